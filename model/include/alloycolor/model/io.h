@@ -1,0 +1,42 @@
+// Readers of optical constants:
+//  - refractiveindex.info database YAML: DATA entries `tabulated nk` (rows
+//    `wavelength_um n k`), or `tabulated n` plus `tabulated k` in one file (rows
+//    `wavelength_um value`, joined on the n grid with k interpolated). Other entry types
+//    (`formula N`, `tabulated n2`) are refused with a message naming them.
+//  - CSV with a header line `lambda_nm,n,k` (lines starting with '#' are comments).
+// Every error names the file, and the line where there is one. A wavelength repeated
+// with different values is averaged with a warning (real files do this).
+#ifndef ALLOYCOLOR_MODEL_IO_H_
+#define ALLOYCOLOR_MODEL_IO_H_
+
+#include <string>
+#include <vector>
+
+#include "alloycolor/model/spectrum.h"
+
+namespace alloycolor {
+
+// Chooses the reader from the extension (.yml/.yaml or .csv); warnings, if given,
+// receive one line per oddity that was repaired.
+NkSpectrum ReadNkFile(const std::string& path, std::vector<std::string>* warnings = nullptr);
+NkSpectrum ReadRefractiveIndexYaml(const std::string& path,
+                                   std::vector<std::string>* warnings = nullptr);
+NkSpectrum ReadNkCsv(const std::string& path, std::vector<std::string>* warnings = nullptr);
+
+// Writes lambda_nm,n,k rows with full precision (17 significant digits).
+std::string NkCsvText(const std::vector<double>& lambda_nm, const std::vector<double>& n,
+                      const std::vector<double>& k);
+
+// Whole file as a string; throws Error naming the file when it cannot be read.
+std::string ReadFileText(const std::string& path);
+
+// Writes through a temporary file in the same folder renamed into place, so that a
+// failed or interrupted write never leaves a damaged file nor destroys the old one.
+void WriteFileAtomic(const std::string& path, const std::string& contents);
+
+// FNV-1a 64-bit checksum of bytes, as 16 hex digits.
+std::string Fnv1a64Hex(const std::string& bytes);
+
+}  // namespace alloycolor
+
+#endif  // ALLOYCOLOR_MODEL_IO_H_

@@ -1,0 +1,146 @@
+// Optics of a conductor, written once and templated on the scalar so that the fit (with
+// ceres::Jet) and the renderer (with double) run the same physics. Complex numbers are
+// carried as explicit real and imaginary parts (std::complex<ceres::Jet> is not supported).
+//
+// Equations from Kuboshima & Furukawa, "colour expression of solids considering the
+// composition of the material", as corrected in MISSION.md:
+//   N = n + i k                                             (eq. 1)
+//   eps1 = n^2 - k^2,  eps2 = 2 n k                         (eq. 9, 10)
+//   n^2 = (|eps| + eps1) / 2,  k^2 = (|eps| - eps1) / 2      (eq. 13, 14), n, k >= 0
+//   Fresnel at incidence angle psi0, with S = sqrt(N^2 - sin^2 psi0):
+//     Rs = |cos psi0 - S|^2 / |cos psi0 + S|^2
+//     Rp = |N^2 cos psi0 - S|^2 / |N^2 cos psi0 + S|^2,   R = (Rs + Rp) / 2   (eq. 2-4)
+//   Drude: eps(w) = eps_inf - wp^2 / (w (w + i gamma)),  gamma = 1/tau       (eq. 7)
+//     eps1 = eps_inf - wp^2 / (w^2 + gamma^2),  eps2 = wp^2 gamma / (w (w^2 + gamma^2))
+//   Pointwise inversion (eq. 11, 12, with the omega the paper drops), eps_inf = 1:
+//     w tau = (1 - eps1) / eps2,  wp^2 = (1 - eps1) (w^2 + gamma^2)
+//     defined only where eps1 < 1 and eps2 > 0.
+// Units: photon energies w, gamma, wp in eV (hbar w); see units.h.
+#ifndef ALLOYCOLOR_MODEL_OPTICS_H_
+#define ALLOYCOLOR_MODEL_OPTICS_H_
+
+#include <cmath>
+
+namespace alloycolor {
+
+template <typename T>
+struct Complex {
+  T re;
+  T im;
+};
+
+template <typename T>
+Complex<T> operator+(const Complex<T>& a, const Complex<T>& b) {
+  return {a.re + b.re, a.im + b.im};
+}
+template <typename T>
+Complex<T> operator-(const Complex<T>& a, const Complex<T>& b) {
+  return {a.re - b.re, a.im - b.im};
+}
+template <typename T>
+Complex<T> operator*(const Complex<T>& a, const Complex<T>& b) {
+  return {a.re * b.re - a.im * b.im, a.re * b.im + a.im * b.re};
+}
+template <typename T>
+Complex<T> operator*(const T& s, const Complex<T>& a) {
+  return {s * a.re, s * a.im};
+}
+template <typename T>
+T Norm2(const Complex<T>& a) {
+  return a.re * a.re + a.im * a.im;
+}
+
+// Principal square root, in the form that avoids cancellation for either sign of re.
+template <typename T>
+Complex<T> Sqrt(const Complex<T>& z) {
+  using std::sqrt;
+  const T r = sqrt(z.re * z.re + z.im * z.im);
+  if (r == T(0)) return {T(0), T(0)};
+  if (z.re >= T(0)) {
+    const T t = sqrt((r + z.re) * T(0.5));
+    return {t, z.im / (T(2) * t)};
+  }
+  const T t = sqrt((r - z.re) * T(0.5));
+  const T abs_im = z.im < T(0) ? -z.im : z.im;
+  return {abs_im / (T(2) * t), z.im < T(0) ? -t : t};
+}
+
+// eq. 9, 10: eps = N^2.
+template <typename T>
+Complex<T> PermittivityFromIndex(const Complex<T>& nk) {
+  return nk * nk;
+}
+
+// eq. 13, 14: the root of eps with n, k >= 0 (for eps2 >= 0), computed without
+// cancellation: the larger of n, k from its formula, the other from eps2 = 2 n k.
+template <typename T>
+Complex<T> IndexFromPermittivity(const Complex<T>& eps) {
+  using std::sqrt;
+  const T mod = sqrt(eps.re * eps.re + eps.im * eps.im);
+  if (mod == T(0)) return {T(0), T(0)};
+  if (eps.re >= T(0)) {
+    const T n = sqrt((mod + eps.re) * T(0.5));
+    return {n, eps.im / (T(2) * n)};
+  }
+  const T k = sqrt((mod - eps.re) * T(0.5));
+  return {eps.im / (T(2) * k), k};
+}
+
+template <typename T>
+struct Reflectance {
+  T s;  // Rs
+  T p;  // Rp
+  T Average() const { return (s + p) * T(0.5); }
+};
+
+// eq. 2-4 for a conductor of index nk in vacuum (or air), light at angle psi0 given by
+// cos_psi0 in [0, 1].
+template <typename T>
+Reflectance<T> FresnelReflectance(const Complex<T>& nk, const T& cos_psi0) {
+  const Complex<T> n2 = nk * nk;
+  const T sin2 = T(1) - cos_psi0 * cos_psi0;
+  const Complex<T> s = Sqrt(Complex<T>{n2.re - sin2, n2.im});
+  const Complex<T> c{cos_psi0, T(0)};
+  const T rs = Norm2(c - s) / Norm2(c + s);
+  const Complex<T> n2c = cos_psi0 * n2;
+  const T rp = Norm2(n2c - s) / Norm2(n2c + s);
+  return {rs, rp};
+}
+
+// Normal incidence: R = ((n-1)^2 + k^2) / ((n+1)^2 + k^2).
+template <typename T>
+T NormalReflectance(const Complex<T>& nk) {
+  const T a = nk.re - T(1);
+  const T b = nk.re + T(1);
+  const T k2 = nk.im * nk.im;
+  return (a * a + k2) / (b * b + k2);
+}
+
+// eq. 7 with a background eps_inf: eps = eps_inf - wp2 / (w (w + i gamma)).
+template <typename T>
+Complex<T> DrudePermittivity(const T& omega_ev, const T& wp2_ev2, const T& gamma_ev,
+                             const T& eps_inf = T(1)) {
+  const T d = omega_ev * omega_ev + gamma_ev * gamma_ev;
+  return {eps_inf - wp2_ev2 / d, wp2_ev2 * gamma_ev / (omega_ev * d)};
+}
+
+// Drude parameters that reproduce one permittivity exactly at one photon energy.
+struct DrudePoint {
+  double gamma_ev;  // hbar / tau
+  double wp2_ev2;   // (hbar omega_p)^2
+};
+
+// True where eq. 11, 12 are defined: eps1 < 1 and eps2 > 0 (finite).
+inline bool DrudeInvertible(double eps1, double eps2) {
+  return std::isfinite(eps1) && std::isfinite(eps2) && eps1 < 1.0 && eps2 > 0.0;
+}
+
+// eq. 11, 12 with omega: the caller checks DrudeInvertible first.
+inline DrudePoint InvertDrude(double omega_ev, double eps1, double eps2) {
+  const double gamma = omega_ev * eps2 / (1.0 - eps1);
+  return {gamma, (1.0 - eps1) * (omega_ev * omega_ev + gamma * gamma)};
+}
+
+}  // namespace alloycolor
+
+#endif  // ALLOYCOLOR_MODEL_OPTICS_H_

@@ -1,0 +1,81 @@
+// Colorimetry: spectral reflectance to CIE XYZ (paper eq. 5), and XYZ to the paper's RGB
+// (eq. 6), linear and 8-bit sRGB (IEC 61966-2-1), CIELAB (CIE 15:2004) and CIEDE2000
+// (CIE 142-2001; Sharma, Wu & Dalal 2005).
+//
+//   X = sum P(l) R(l) xbar(l) / sum P(l) ybar(l)   (likewise Y, Z)
+//
+// on the tables' 5 nm grid over the range both the illuminant and the observer cover
+// (360-830 nm for A, D65, E with either observer; 380-780 nm for C, D50, F2, F11), so a
+// perfect reflector has Y = 1. Tables are read from data/cie/*.csv.
+#ifndef ALLOYCOLOR_RENDER_COLORIMETRY_H_
+#define ALLOYCOLOR_RENDER_COLORIMETRY_H_
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace alloycolor::render {
+
+struct XYZ {
+  double X, Y, Z;
+};
+struct Lab {
+  double L, a, b;
+};
+struct RGB {
+  double r, g, b;
+};
+
+// Names accepted for the illuminant (A, C, D50, D65, E, F2, F11) and observer (2, 10).
+std::vector<std::string> IlluminantNames();
+
+// The weights of eq. 5 for one illuminant and observer, on their common 5 nm grid.
+class Colorimeter {
+ public:
+  // Reads data_dir/cie/illuminant-NAME.csv and data_dir/cie/cmf-1931-2.csv or
+  // cmf-1964-10.csv. Throws Error for an unknown illuminant name or observer, or a
+  // damaged table (naming the file and line).
+  static Colorimeter Load(const std::string& data_dir, const std::string& illuminant,
+                          int observer_deg);
+
+  const std::string& illuminant() const { return illuminant_; }
+  int observer_deg() const { return observer_deg_; }
+  const std::vector<double>& lambda_nm() const { return lambda_nm_; }
+
+  // Reflectance sampled on lambda_nm() -> XYZ (Y = 1 for a perfect reflector).
+  XYZ ReflectanceToXYZ(const std::vector<double>& reflectance) const;
+  XYZ ReflectanceToXYZ(const double* reflectance) const;
+  XYZ White() const { return white_; }
+
+  // Normalised weights: X = sum wx[i] R[i], etc.
+  const std::vector<double>& wx() const { return wx_; }
+  const std::vector<double>& wy() const { return wy_; }
+  const std::vector<double>& wz() const { return wz_; }
+
+ private:
+  std::string illuminant_;
+  int observer_deg_ = 2;
+  std::vector<double> lambda_nm_, wx_, wy_, wz_;
+  XYZ white_{};
+};
+
+// eq. 6, kept as the paper's output: R = 1.90X - 0.53Y - 0.29Z, G = -0.99X + 2.00Y - 0.03Z,
+// B = 0.06X - 0.12Y + 0.90Z.
+RGB PaperRGBFromXYZ(const XYZ& xyz);
+// IEC 61966-2-1 matrix, D65 white, no chromatic adaptation.
+RGB LinearSRGBFromXYZ(const XYZ& xyz);
+XYZ XYZFromLinearSRGB(const RGB& rgb);
+// The sRGB transfer function (IEC 61966-2-1) and its inverse, on [0, 1].
+double SRGBEncode(double linear);
+double SRGBDecode(double encoded);
+// Linear sRGB clamped to [0, 1], encoded, rounded to 0..255.
+std::array<std::uint8_t, 3> SRGB8FromLinear(const RGB& linear);
+// CIELAB relative to the given white (Y of the white as the reference).
+Lab LabFromXYZ(const XYZ& xyz, const XYZ& white);
+// CIEDE2000 with kL = kC = kH = 1.
+double DeltaE00(const Lab& lab1, const Lab& lab2);
+
+}  // namespace alloycolor::render
+
+#endif  // ALLOYCOLOR_RENDER_COLORIMETRY_H_

@@ -5,8 +5,10 @@
 //   X = sum P(l) R(l) xbar(l) / sum P(l) ybar(l)   (likewise Y, Z)
 //
 // on the tables' 5 nm grid over the range both the illuminant and the observer cover
-// (360-830 nm for A, D65, E with either observer; 380-780 nm for C, D50, F2, F11), so a
-// perfect reflector has Y = 1. Tables are read from data/cie/*.csv.
+// (360-830 nm for A and D65, 380-830 nm for E, 380-780 nm for C, D50, F2 and F11, with
+// either observer), taking the illuminant at the multiples of 5 nm without interpolation
+// (A is tabulated at 1 nm), so that a perfect reflector has Y = 1. Tables are read from
+// data/cie/*.csv.
 #ifndef ALLOYCOLOR_RENDER_COLORIMETRY_H_
 #define ALLOYCOLOR_RENDER_COLORIMETRY_H_
 

@@ -1,0 +1,148 @@
+#include "common.h"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+
+#include "alloycolor/fit/smooth_fit.h"
+#include "alloycolor/model/error.h"
+#include "alloycolor/model/io.h"
+#include "alloycolor/model/sample_models.h"
+
+namespace alloycolor::app {
+
+namespace fs = std::filesystem;
+
+std::string DataRoot() {
+  if (const char* env = std::getenv("ALLOYCOLOR_DATA_DIR"); env && *env) return env;
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    const fs::path installed = exe.parent_path() / ALLOYCOLOR_INSTALL_DATA_RELPATH;
+    if (fs::is_directory(installed / "cie", ec)) return fs::weakly_canonical(installed).string();
+  }
+  return ALLOYCOLOR_SOURCE_DATA_DIR;
+}
+
+Dataset LoadDatasetArg(const std::string& arg) {
+  std::error_code ec;
+  if (!fs::exists(arg, ec)) {
+    const fs::path bundled = fs::path(DataRoot()) / arg;
+    if (!arg.empty() && fs::path(arg).is_relative() && fs::exists(bundled, ec)) {
+      return LoadDataset(bundled.string());
+    }
+  }
+  return LoadDataset(arg);
+}
+
+render::Colorimeter LoadColorimeter(const std::string& illuminant, int observer_deg) {
+  return render::Colorimeter::Load(DataRoot(), illuminant, observer_deg);
+}
+
+namespace {
+
+std::vector<std::string> SplitComma(const std::string& text) {
+  std::vector<std::string> parts;
+  std::stringstream in(text);
+  std::string part;
+  while (std::getline(in, part, ',')) parts.push_back(part);
+  if (!text.empty() && text.back() == ',') parts.push_back("");
+  return parts;
+}
+
+}  // namespace
+
+std::vector<double> ParseCompositions(const std::string& text, const AlloySystem& system) {
+  std::vector<double> xs;
+  for (const std::string& part : SplitComma(text)) {
+    xs.push_back(ParseComposition(part, system));
+  }
+  if (xs.empty()) throw Error("no composition given");
+  return xs;
+}
+
+std::vector<double> ParseNumberList(const std::string& text, const std::string& option) {
+  std::vector<double> values;
+  for (const std::string& part : SplitComma(text)) {
+    char* end = nullptr;
+    const double v = std::strtod(part.c_str(), &end);
+    if (part.empty() || end == part.c_str() || *end != '\0' || !std::isfinite(v)) {
+      throw Error(option + ": cannot read '" + part + "' as a number");
+    }
+    values.push_back(v);
+  }
+  if (values.empty()) throw Error(option + ": no value given");
+  return values;
+}
+
+std::unique_ptr<AlloyModel> BuildModel(const std::string& method, const Dataset& dataset,
+                                       bool quiet) {
+  if (method == "paper") {
+    return std::make_unique<SampleModel>(SampleModel::Kind::kPaper, dataset);
+  }
+  if (method == "eps-linear") {
+    return std::make_unique<SampleModel>(SampleModel::Kind::kEpsLinear, dataset);
+  }
+  if (method == "smooth") {
+    fit::SmoothFitOptions options;
+    if (!quiet) {
+      options.progress = [](const std::string& m) { std::cerr << "alloycolor: " << m << "\n"; };
+    }
+    return std::move(fit::FitSmooth(dataset, options).model);
+  }
+  throw Error("unknown method '" + method + "' (paper, eps-linear, smooth)");
+}
+
+void WriteOutput(const std::string& path, const std::string& contents, bool quiet) {
+  WriteFileAtomic(path, contents);
+  if (!quiet) std::cerr << "alloycolor: wrote " << path << "\n";
+}
+
+void Warn(const std::string& message) { std::cerr << "alloycolor: warning: " << message << "\n"; }
+
+void ModelSource::AddOptions(CLI::App* cmd, bool with_data) {
+  cmd->add_option("--model", model_path, "Fitted model file (JSON, from 'alloycolor fit')");
+  if (with_data) {
+    cmd->add_option("--data", data_dir,
+                    "Data set: folder with dataset.json, a manifest, or a bundled set's name "
+                    "(Au-Ag, Cu-Zn, Nb-Sn)");
+    cmd->add_option("--method", method,
+                    "Model built from --data: paper (the paper's baseline), eps-linear, "
+                    "smooth (Ceres fit)")
+        ->capture_default_str();
+  }
+  cmd->add_flag("--extrapolate", extrapolate,
+                "Allow compositions outside the training samples' range");
+}
+
+std::unique_ptr<AlloyModel> ModelSource::Load(bool quiet) const {
+  if (!model_path.empty() && !data_dir.empty()) {
+    throw Error("give either --model or --data, not both");
+  }
+  if (!model_path.empty()) return ReadModelFile(model_path);
+  if (!data_dir.empty()) {
+    const Dataset dataset = LoadDatasetArg(data_dir);
+    if (!quiet) {
+      for (const std::string& w : dataset.warnings) Warn(w);
+    }
+    auto model = BuildModel(method, dataset, quiet);
+    if (!quiet) {
+      for (const std::string& w : model->warnings()) Warn(w);
+    }
+    return model;
+  }
+  throw Error("give --model FILE or --data DIR");
+}
+
+void CheckComposition(const AlloyModel& model, double x_atomic, bool extrapolate) {
+  if (!(x_atomic >= 0.0 && x_atomic <= 1.0)) {
+    throw Error("composition " + std::to_string(x_atomic) + " lies outside [0, 1]");
+  }
+  if (!extrapolate) model.CheckInRange(x_atomic);
+}
+
+}  // namespace alloycolor::app

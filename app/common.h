@@ -1,0 +1,65 @@
+// What the subcommands share: finding the bundled data, reading compositions, building
+// or loading a model, writing outputs safely, printing warnings and progress.
+#ifndef ALLOYCOLOR_APP_COMMON_H_
+#define ALLOYCOLOR_APP_COMMON_H_
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "alloycolor/model/alloy_model.h"
+#include "alloycolor/model/dataset.h"
+#include "alloycolor/render/colorimetry.h"
+
+namespace alloycolor::app {
+
+// The bundled data folder: $ALLOYCOLOR_DATA_DIR, else the installed share/alloycolor/data
+// next to the program, else the source tree's data/.
+std::string DataRoot();
+
+// A data set given on the command line: a path, or the name of a bundled set ("Au-Ag").
+Dataset LoadDatasetArg(const std::string& arg);
+
+// Colorimeter for --illuminant and --observer.
+render::Colorimeter LoadColorimeter(const std::string& illuminant, int observer_deg);
+
+// Comma-separated compositions ("0.5,75wt%,18k") as atomic fractions of element a.
+std::vector<double> ParseCompositions(const std::string& text, const AlloySystem& system);
+// Comma-separated numbers, naming the option on error.
+std::vector<double> ParseNumberList(const std::string& text, const std::string& option);
+
+// Builds a method's model from a data set without Ceres where possible ("paper",
+// "eps-linear"); "smooth" and "physical" are fitted with their default options.
+std::unique_ptr<AlloyModel> BuildModel(const std::string& method, const Dataset& dataset,
+                                       bool quiet);
+
+// Writes a file atomically and says so on stderr unless quiet.
+void WriteOutput(const std::string& path, const std::string& contents, bool quiet);
+
+// One warning line on stderr ("alloycolor: warning: ...").
+void Warn(const std::string& message);
+
+// Options common to commands that take a composition source: --model, --data + --method.
+struct ModelSource {
+  std::string model_path;
+  std::string data_dir;
+  std::string method = "paper";
+  bool extrapolate = false;
+  void AddOptions(CLI::App* cmd, bool with_data);
+  // Loads or builds the model; throws Error when neither or both are given.
+  std::unique_ptr<AlloyModel> Load(bool quiet) const;
+};
+
+// Checks x against the model's range unless extrapolation is allowed.
+void CheckComposition(const AlloyModel& model, double x_atomic, bool extrapolate);
+
+// Subcommand registration (one file each).
+void RegisterColor(CLI::App& app);
+void RegisterFit(CLI::App& app);
+void RegisterPredict(CLI::App& app);
+
+}  // namespace alloycolor::app
+
+#endif  // ALLOYCOLOR_APP_COMMON_H_

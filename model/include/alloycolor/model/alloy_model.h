@@ -1,0 +1,116 @@
+// A model of the permittivity eps(lambda, x) of a binary alloy, x the atomic fraction of
+// element a. Every method (the paper's pointwise baseline, linear interpolation of eps,
+// the smooth Ceres fit, the physical Drude + interband model) implements this interface,
+// so all of them feed the same Fresnel-to-colour chain and the same JSON model file.
+//
+// Model file (JSON), format "alloycolor-model", version kModelFormatVersion:
+//   {"format": "alloycolor-model", "version": 1, "method": "...",
+//    "system": {"a": "Au", "b": "Ag"}, "composition": "atomic_fraction_a",
+//    "x_range": [lo, hi], "lambda_range_nm": [lo, hi],
+//    "training_samples": [{"x": ..., "x_given": ..., "file": ..., "checksum": ...}],
+//    "parameters": {... method's own ...}, "fit": {... statistics ...},
+//    "warnings": [...]}
+// See docs/model-format.md.
+#ifndef ALLOYCOLOR_MODEL_ALLOY_MODEL_H_
+#define ALLOYCOLOR_MODEL_ALLOY_MODEL_H_
+
+#include <complex>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "alloycolor/model/composition.h"
+#include "alloycolor/model/dataset.h"
+
+namespace alloycolor {
+
+inline constexpr int kModelFormatVersion = 1;
+inline constexpr const char* kModelFormatName = "alloycolor-model";
+
+// What a model keeps of each training sample (not its data, unless the method needs it).
+struct TrainingSample {
+  double x_atomic;
+  double x_given;
+  std::string file;
+  std::string checksum;
+};
+
+class AlloyModel {
+ public:
+  virtual ~AlloyModel() = default;
+
+  virtual std::string method() const = 0;
+
+  // eps at composition x_atomic for each wavelength (nm). Throws Error for a wavelength
+  // outside [lambda_min_nm(), lambda_max_nm()]. Never returns NaN.
+  virtual std::vector<std::complex<double>> Permittivity(
+      double x_atomic, const std::vector<double>& lambda_nm) const = 0;
+
+  // n + i k (eq. 13, 14 applied to Permittivity).
+  std::vector<std::complex<double>> Index(double x_atomic,
+                                          const std::vector<double>& lambda_nm) const;
+
+  // Whether PermittivityDraws gives anything: draws of eps from the parameters'
+  // covariance, for propagating uncertainty to reflectance and colour.
+  virtual bool HasUncertainty() const { return false; }
+  virtual std::vector<std::vector<std::complex<double>>> PermittivityDraws(
+      double x_atomic, const std::vector<double>& lambda_nm, int count,
+      std::uint32_t seed) const;
+
+  // The complete model file (see above), deterministic for the same model.
+  nlohmann::json ToJson() const;
+
+  const AlloySystem& system() const { return system_; }
+  const std::string& composition() const { return composition_; }
+  double x_min() const { return x_min_; }
+  double x_max() const { return x_max_; }
+  double lambda_min_nm() const { return lambda_min_nm_; }
+  double lambda_max_nm() const { return lambda_max_nm_; }
+  const std::vector<TrainingSample>& training_samples() const { return training_; }
+  const std::vector<std::string>& warnings() const { return warnings_; }
+  const nlohmann::json& fit_statistics() const { return fit_statistics_; }
+  void set_fit_statistics(nlohmann::json stats) { fit_statistics_ = std::move(stats); }
+
+  // Throws Error naming x when it lies outside [x_min, x_max] (beyond 1e-9).
+  void CheckInRange(double x_atomic) const;
+
+ protected:
+  // The method's own "parameters" block.
+  virtual nlohmann::json ParametersJson() const = 0;
+  // Sets the common fields from a data set (training samples, x range).
+  void SetCommon(const Dataset& dataset, double lambda_min_nm, double lambda_max_nm);
+  // Reads the common fields back from a model file.
+  void ReadCommon(const nlohmann::json& doc);
+  void CheckLambda(const std::vector<double>& lambda_nm) const;
+  void AddWarning(std::string warning) { warnings_.push_back(std::move(warning)); }
+
+ private:
+  AlloySystem system_{};
+  std::string composition_ = "atomic_fraction_a";
+  double x_min_ = 0.0, x_max_ = 1.0;
+  double lambda_min_nm_ = 0.0, lambda_max_nm_ = 0.0;
+  std::vector<TrainingSample> training_;
+  std::vector<std::string> warnings_;
+  nlohmann::json fit_statistics_ = nlohmann::json::object();
+};
+
+// Reads a model file of any method; throws Error naming the file and the field for a
+// damaged file, another format, or an unknown version or method.
+std::unique_ptr<AlloyModel> ReadModelFile(const std::string& path);
+std::unique_ptr<AlloyModel> ModelFromJson(const nlohmann::json& doc, const std::string& source);
+
+// The model file as text: pretty JSON with a final newline; the same model gives the
+// same bytes.
+std::string ModelFileText(const AlloyModel& model);
+
+// Default wavelength grid for fitting a data set: the range all samples cover, cut to
+// 360-830 nm when that leaves at least 380-780 nm, on a 5 nm step; otherwise (infrared
+// data) the common range in 200 steps.
+std::vector<double> DefaultGrid(const Dataset& dataset);
+
+}  // namespace alloycolor
+
+#endif  // ALLOYCOLOR_MODEL_ALLOY_MODEL_H_

@@ -1,0 +1,67 @@
+// Models that keep the training samples' measured spectra and interpolate between them:
+//
+//  - "paper": the baseline of Kuboshima & Furukawa. At each wavelength, each sample's
+//    eps is inverted to Drude parameters (eq. 11, 12): gamma = 1/tau and wp^2, hence
+//    m*/m_e = kPlasmaEv2M3 N_e(x) / wp^2. tau and m* are interpolated linearly in x
+//    between the neighbouring samples and eps rebuilt with eq. 7 (N_e(x) from
+//    composition.h). Where a sample's inversion is undefined (eps1 >= 1 or eps2 <= 0) it
+//    is skipped at those wavelengths (named in warnings()); where no sample can be
+//    inverted, eps is interpolated linearly instead. Known samples are reproduced exactly.
+//  - "eps-linear": eps interpolated linearly in x between neighbouring samples; the
+//    obvious baseline the fitted models must beat.
+//
+// Both interpolate each sample's n, k linearly in wavelength. Outside the samples' x range
+// they extrapolate linearly from the two nearest samples (the caller decides whether
+// that is allowed).
+#ifndef ALLOYCOLOR_MODEL_SAMPLE_MODELS_H_
+#define ALLOYCOLOR_MODEL_SAMPLE_MODELS_H_
+
+#include <complex>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "alloycolor/model/alloy_model.h"
+
+namespace alloycolor {
+
+class SampleModel : public AlloyModel {
+ public:
+  enum class Kind { kPaper, kEpsLinear };
+
+  // Throws Error when the data set has fewer than two samples or no common wavelength
+  // range.
+  SampleModel(Kind kind, const Dataset& dataset);
+  SampleModel(Kind kind, const nlohmann::json& doc, const std::string& source);
+
+  std::string method() const override;
+  std::vector<std::complex<double>> Permittivity(
+      double x_atomic, const std::vector<double>& lambda_nm) const override;
+
+  // Drude parameters of the paper method at (x, lambda): false where undefined.
+  struct TauMass {
+    double tau_fs;
+    double mass_ratio;  // m*/m_e
+  };
+  bool PaperTauMass(double x_atomic, double lambda_nm, TauMass* out) const;
+
+ protected:
+  nlohmann::json ParametersJson() const override;
+
+ private:
+  struct Node {
+    double x;
+    NkSpectrum nk;
+  };
+  void Validate();
+  void Diagnose();
+  std::complex<double> PaperAt(double x, double lambda_nm) const;
+  std::complex<double> EpsLinearAt(double x, double lambda_nm) const;
+
+  Kind kind_;
+  std::vector<Node> nodes_;  // sorted by x
+};
+
+}  // namespace alloycolor
+
+#endif  // ALLOYCOLOR_MODEL_SAMPLE_MODELS_H_

@@ -1,0 +1,212 @@
+#include "alloycolor/model/alloy_model.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "alloycolor/model/error.h"
+#include "alloycolor/model/io.h"
+#include "alloycolor/model/optics.h"
+#include "alloycolor/model/sample_models.h"
+#include "alloycolor/model/smooth_model.h"
+
+namespace alloycolor {
+
+std::vector<std::complex<double>> AlloyModel::Index(
+    double x_atomic, const std::vector<double>& lambda_nm) const {
+  std::vector<std::complex<double>> eps = Permittivity(x_atomic, lambda_nm);
+  for (auto& e : eps) {
+    const Complex<double> nk = IndexFromPermittivity(Complex<double>{e.real(), e.imag()});
+    e = {nk.re, nk.im};
+  }
+  return eps;
+}
+
+std::vector<std::vector<std::complex<double>>> AlloyModel::PermittivityDraws(
+    double, const std::vector<double>&, int, std::uint32_t) const {
+  return {};
+}
+
+void AlloyModel::CheckInRange(double x_atomic) const {
+  if (!(x_atomic >= x_min_ - 1e-9 && x_atomic <= x_max_ + 1e-9)) {
+    std::ostringstream msg;
+    msg << "composition x = " << x_atomic << " lies outside the fitted range [" << x_min_
+        << ", " << x_max_ << "] of the " << method() << " model (use --extrapolate)";
+    throw Error(msg.str());
+  }
+}
+
+void AlloyModel::CheckLambda(const std::vector<double>& lambda_nm) const {
+  for (double l : lambda_nm) {
+    if (!(l >= lambda_min_nm_ - 1e-9 && l <= lambda_max_nm_ + 1e-9)) {
+      std::ostringstream msg;
+      msg << "wavelength " << l << " nm lies outside the " << method() << " model's range "
+          << lambda_min_nm_ << "-" << lambda_max_nm_ << " nm";
+      throw Error(msg.str());
+    }
+  }
+}
+
+void AlloyModel::SetCommon(const Dataset& dataset, double lambda_min_nm,
+                           double lambda_max_nm) {
+  system_ = dataset.system;
+  composition_ = dataset.composition;
+  training_.clear();
+  for (const Sample& s : dataset.samples) {
+    training_.push_back({s.x_atomic, s.x_given, s.file, s.checksum});
+  }
+  if (training_.empty()) throw Error(dataset.manifest_path + ": no samples");
+  x_min_ = training_.front().x_atomic;
+  x_max_ = training_.back().x_atomic;
+  lambda_min_nm_ = lambda_min_nm;
+  lambda_max_nm_ = lambda_max_nm;
+}
+
+nlohmann::json AlloyModel::ToJson() const {
+  nlohmann::json doc;
+  doc["format"] = kModelFormatName;
+  doc["version"] = kModelFormatVersion;
+  doc["method"] = method();
+  doc["system"] = {{"a", system_.a.symbol}, {"b", system_.b.symbol}};
+  doc["composition"] = composition_;
+  doc["x_range"] = {x_min_, x_max_};
+  doc["lambda_range_nm"] = {lambda_min_nm_, lambda_max_nm_};
+  nlohmann::json samples = nlohmann::json::array();
+  for (const TrainingSample& s : training_) {
+    samples.push_back({{"x", s.x_atomic},
+                       {"x_given", s.x_given},
+                       {"file", s.file},
+                       {"checksum", s.checksum}});
+  }
+  doc["training_samples"] = samples;
+  doc["parameters"] = ParametersJson();
+  doc["fit"] = fit_statistics_;
+  doc["warnings"] = warnings_;
+  return doc;
+}
+
+namespace {
+
+// Field access that names the culprit.
+const nlohmann::json& Field(const nlohmann::json& doc, const char* key,
+                            const std::string& where) {
+  if (!doc.is_object() || !doc.contains(key)) {
+    throw Error(where + ": missing field '" + key + "'");
+  }
+  return doc.at(key);
+}
+
+double Number(const nlohmann::json& value, const std::string& where) {
+  if (!value.is_number()) throw Error(where + ": expected a number");
+  const double v = value.get<double>();
+  if (!std::isfinite(v)) throw Error(where + ": not a finite number");
+  return v;
+}
+
+std::string String(const nlohmann::json& value, const std::string& where) {
+  if (!value.is_string()) throw Error(where + ": expected a string");
+  return value.get<std::string>();
+}
+
+}  // namespace
+
+void AlloyModel::ReadCommon(const nlohmann::json& doc) {
+  // The caller has checked format and version; `where` prefixes come from the caller's
+  // source name through the Error messages of the helpers above.
+  const nlohmann::json& sys = Field(doc, "system", "model");
+  system_.a = FindElement(String(Field(sys, "a", "system"), "system.a"));
+  system_.b = FindElement(String(Field(sys, "b", "system"), "system.b"));
+  composition_ = String(Field(doc, "composition", "model"), "composition");
+  const nlohmann::json& xr = Field(doc, "x_range", "model");
+  if (!xr.is_array() || xr.size() != 2) throw Error("x_range: expected [lo, hi]");
+  x_min_ = Number(xr[0], "x_range[0]");
+  x_max_ = Number(xr[1], "x_range[1]");
+  const nlohmann::json& lr = Field(doc, "lambda_range_nm", "model");
+  if (!lr.is_array() || lr.size() != 2) throw Error("lambda_range_nm: expected [lo, hi]");
+  lambda_min_nm_ = Number(lr[0], "lambda_range_nm[0]");
+  lambda_max_nm_ = Number(lr[1], "lambda_range_nm[1]");
+  if (!(x_min_ <= x_max_) || !(lambda_min_nm_ < lambda_max_nm_)) {
+    throw Error("x_range or lambda_range_nm: empty range");
+  }
+  const nlohmann::json& ts = Field(doc, "training_samples", "model");
+  if (!ts.is_array()) throw Error("training_samples: expected an array");
+  training_.clear();
+  for (size_t i = 0; i < ts.size(); ++i) {
+    const std::string where = "training_samples[" + std::to_string(i) + "]";
+    training_.push_back({Number(Field(ts[i], "x", where), where + ".x"),
+                         Number(Field(ts[i], "x_given", where), where + ".x_given"),
+                         String(Field(ts[i], "file", where), where + ".file"),
+                         String(Field(ts[i], "checksum", where), where + ".checksum")});
+  }
+  fit_statistics_ = doc.value("fit", nlohmann::json::object());
+  warnings_.clear();
+  if (doc.contains("warnings")) {
+    const nlohmann::json& w = doc.at("warnings");
+    if (!w.is_array()) throw Error("warnings: expected an array");
+    for (const auto& line : w) warnings_.push_back(String(line, "warnings[]"));
+  }
+}
+
+std::unique_ptr<AlloyModel> ModelFromJson(const nlohmann::json& doc,
+                                          const std::string& source) {
+  try {
+    if (!doc.is_object()) throw Error("not a JSON object");
+    const std::string format = String(Field(doc, "format", "model"), "format");
+    if (format != kModelFormatName) {
+      throw Error("format is '" + format + "', expected '" + kModelFormatName + "'");
+    }
+    const nlohmann::json& version = Field(doc, "version", "model");
+    if (!version.is_number_integer() || version.get<int>() != kModelFormatVersion) {
+      throw Error("unsupported version " + version.dump() + " (this program reads version " +
+                  std::to_string(kModelFormatVersion) + ")");
+    }
+    const std::string method = String(Field(doc, "method", "model"), "method");
+    if (method == "paper") {
+      return std::make_unique<SampleModel>(SampleModel::Kind::kPaper, doc, source);
+    }
+    if (method == "eps-linear") {
+      return std::make_unique<SampleModel>(SampleModel::Kind::kEpsLinear, doc, source);
+    }
+    if (method == "smooth") return std::make_unique<SmoothModel>(doc, source);
+    throw Error("unknown method '" + method + "'");
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(source + ": damaged model: " + e.what());
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    if (what.rfind(source + ":", 0) == 0) throw;
+    throw Error(source + ": " + what);
+  }
+}
+
+std::unique_ptr<AlloyModel> ReadModelFile(const std::string& path) {
+  const std::string text = ReadFileText(path);
+  nlohmann::json doc;
+  try {
+    doc = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw Error(path + ": not valid JSON (" + e.what() + ")");
+  }
+  return ModelFromJson(doc, path);
+}
+
+std::string ModelFileText(const AlloyModel& model) { return model.ToJson().dump(1) + "\n"; }
+
+std::vector<double> DefaultGrid(const Dataset& dataset) {
+  if (dataset.samples.empty()) throw Error(dataset.manifest_path + ": no samples");
+  double lo = -1e300, hi = 1e300;
+  for (const Sample& s : dataset.samples) {
+    lo = std::max(lo, s.nk.lambda_min_nm());
+    hi = std::min(hi, s.nk.lambda_max_nm());
+  }
+  if (!(lo < hi)) {
+    throw Error(dataset.manifest_path + ": the samples share no wavelength range");
+  }
+  if (lo <= 380.0 && hi >= 780.0) {
+    const double first = std::ceil(std::max(lo, 360.0) / 5.0 - 1e-9) * 5.0;
+    const double last = std::floor(std::min(hi, 830.0) / 5.0 + 1e-9) * 5.0;
+    return UniformGrid(first, last, 5.0);
+  }
+  return UniformGrid(lo, hi, (hi - lo) / 200.0);
+}
+
+}  // namespace alloycolor

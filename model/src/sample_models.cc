@@ -1,0 +1,222 @@
+#include "alloycolor/model/sample_models.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "alloycolor/model/error.h"
+#include "alloycolor/model/optics.h"
+#include "alloycolor/model/units.h"
+
+namespace alloycolor {
+namespace {
+
+std::complex<double> EpsOf(const NkSpectrum& nk, double lambda_nm) {
+  const std::complex<double> i = NkAt(nk, lambda_nm);
+  return i * i;
+}
+
+std::complex<double> Lerp(const std::complex<double>& a, const std::complex<double>& b,
+                          double t) {
+  return a + (b - a) * t;
+}
+
+// Index pair (lo, hi) and weight t such that x = x_lo + t (x_hi - x_lo), among the given
+// sorted compositions; outside the range, the two nearest (t < 0 or t > 1).
+struct Bracket {
+  size_t lo, hi;
+  double t;
+};
+Bracket FindBracket(const std::vector<double>& xs, double x) {
+  const size_t n = xs.size();
+  size_t hi = std::upper_bound(xs.begin(), xs.end(), x) - xs.begin();
+  hi = std::clamp<size_t>(hi, 1, n - 1);
+  const size_t lo = hi - 1;
+  return {lo, hi, (x - xs[lo]) / (xs[hi] - xs[lo])};
+}
+
+}  // namespace
+
+SampleModel::SampleModel(Kind kind, const Dataset& dataset) : kind_(kind) {
+  for (const Sample& s : dataset.samples) nodes_.push_back({s.x_atomic, s.nk});
+  double lo = -1e300, hi = 1e300;
+  for (const Node& node : nodes_) {
+    lo = std::max(lo, node.nk.lambda_min_nm());
+    hi = std::min(hi, node.nk.lambda_max_nm());
+  }
+  SetCommon(dataset, lo, hi);
+  Validate();
+  Diagnose();
+}
+
+SampleModel::SampleModel(Kind kind, const nlohmann::json& doc, const std::string& source)
+    : kind_(kind) {
+  ReadCommon(doc);
+  const auto& params = doc.at("parameters");
+  if (!params.is_object() || !params.contains("samples") || !params["samples"].is_array()) {
+    throw Error(source + ": parameters.samples: expected an array");
+  }
+  const auto& samples = params["samples"];
+  for (size_t i = 0; i < samples.size(); ++i) {
+    const std::string where = source + ": parameters.samples[" + std::to_string(i) + "]";
+    const auto& s = samples[i];
+    try {
+      Node node;
+      node.x = s.at("x").get<double>();
+      node.nk.source = s.at("source").get<std::string>();
+      node.nk.lambda_nm = s.at("lambda_nm").get<std::vector<double>>();
+      node.nk.n = s.at("n").get<std::vector<double>>();
+      node.nk.k = s.at("k").get<std::vector<double>>();
+      const size_t m = node.nk.lambda_nm.size();
+      if (m < 2 || node.nk.n.size() != m || node.nk.k.size() != m) {
+        throw Error(where + ": lambda_nm, n and k need the same length, at least 2");
+      }
+      for (size_t j = 0; j < m; ++j) {
+        if (!std::isfinite(node.nk.lambda_nm[j]) || !std::isfinite(node.nk.n[j]) ||
+            !std::isfinite(node.nk.k[j]) || node.nk.k[j] < 0 ||
+            (j > 0 && !(node.nk.lambda_nm[j] > node.nk.lambda_nm[j - 1]))) {
+          throw Error(where + ": bad row " + std::to_string(j));
+        }
+      }
+      nodes_.push_back(std::move(node));
+    } catch (const nlohmann::json::exception& e) {
+      throw Error(where + ": " + e.what());
+    }
+  }
+  Validate();
+}
+
+void SampleModel::Validate() {
+  if (nodes_.size() < 2) {
+    throw Error("the " + method() + " model needs at least two samples");
+  }
+  for (size_t i = 1; i < nodes_.size(); ++i) {
+    if (!(nodes_[i].x > nodes_[i - 1].x)) {
+      throw Error("samples " + nodes_[i - 1].nk.source + " and " + nodes_[i].nk.source +
+                  " are not at increasing compositions");
+    }
+  }
+  if (!(lambda_min_nm() < lambda_max_nm())) {
+    throw Error("the samples share no wavelength range");
+  }
+}
+
+void SampleModel::Diagnose() {
+  if (kind_ != Kind::kPaper) return;
+  for (const Node& node : nodes_) {
+    // Ranges (in the sample's own wavelengths within the model's range) where eq. 11, 12
+    // are undefined.
+    double start = -1, last = -1;
+    std::string reason;
+    auto flush = [&]() {
+      if (start < 0) return;
+      std::ostringstream msg;
+      msg << node.nk.source << " (x = " << node.x << "): " << reason << " at " << start
+          << "-" << last << " nm; the Drude inversion is undefined there and the paper "
+          << "model skips this sample at those wavelengths";
+      AddWarning(msg.str());
+      start = -1;
+    };
+    for (size_t j = 0; j < node.nk.lambda_nm.size(); ++j) {
+      const double l = node.nk.lambda_nm[j];
+      if (l < lambda_min_nm() || l > lambda_max_nm()) continue;
+      const double n = node.nk.n[j], k = node.nk.k[j];
+      const double e1 = n * n - k * k, e2 = 2 * n * k;
+      if (DrudeInvertible(e1, e2)) {
+        flush();
+        continue;
+      }
+      const std::string why = e1 >= 1 ? "eps1 >= 1" : "eps2 <= 0";
+      if (start >= 0 && why != reason) flush();
+      if (start < 0) start = l;
+      reason = why;
+      last = l;
+    }
+    flush();
+  }
+}
+
+std::string SampleModel::method() const {
+  return kind_ == Kind::kPaper ? "paper" : "eps-linear";
+}
+
+std::vector<std::complex<double>> SampleModel::Permittivity(
+    double x_atomic, const std::vector<double>& lambda_nm) const {
+  CheckLambda(lambda_nm);
+  std::vector<std::complex<double>> eps(lambda_nm.size());
+  for (size_t i = 0; i < lambda_nm.size(); ++i) {
+    eps[i] = kind_ == Kind::kPaper ? PaperAt(x_atomic, lambda_nm[i])
+                                   : EpsLinearAt(x_atomic, lambda_nm[i]);
+  }
+  return eps;
+}
+
+std::complex<double> SampleModel::EpsLinearAt(double x, double lambda_nm) const {
+  std::vector<double> xs;
+  for (const Node& node : nodes_) xs.push_back(node.x);
+  const Bracket b = FindBracket(xs, x);
+  if (b.t == 0.0) return EpsOf(nodes_[b.lo].nk, lambda_nm);
+  if (b.t == 1.0) return EpsOf(nodes_[b.hi].nk, lambda_nm);
+  return Lerp(EpsOf(nodes_[b.lo].nk, lambda_nm), EpsOf(nodes_[b.hi].nk, lambda_nm), b.t);
+}
+
+bool SampleModel::PaperTauMass(double x, double lambda_nm, TauMass* out) const {
+  const double omega = OmegaEvFromLambdaNm(lambda_nm);
+  // tau and m* of every sample that can be inverted at this wavelength.
+  std::vector<double> xs, taus, masses;
+  for (const Node& node : nodes_) {
+    const std::complex<double> e = EpsOf(node.nk, lambda_nm);
+    if (!DrudeInvertible(e.real(), e.imag())) continue;
+    const DrudePoint p = InvertDrude(omega, e.real(), e.imag());
+    xs.push_back(node.x);
+    taus.push_back(TauFsFromGammaEv(p.gamma_ev));
+    masses.push_back(kPlasmaEv2M3 * FreeElectronDensityM3(node.x, system()) / p.wp2_ev2);
+  }
+  if (xs.empty()) return false;
+  if (xs.size() == 1) {
+    *out = {taus[0], masses[0]};
+    return true;
+  }
+  Bracket b = FindBracket(xs, x);
+  // Inside the samples' range but beyond the invertible ones: hold the nearest.
+  const bool inside = x >= x_min() && x <= x_max();
+  if (inside && (b.t < 0 || b.t > 1)) {
+    const size_t nearest = b.t < 0 ? b.lo : b.hi;
+    *out = {taus[nearest], masses[nearest]};
+    return true;
+  }
+  const double tau = taus[b.lo] + (taus[b.hi] - taus[b.lo]) * b.t;
+  const double mass = masses[b.lo] + (masses[b.hi] - masses[b.lo]) * b.t;
+  if (!(tau > 0) || !(mass > 0)) {  // extrapolated past zero: hold the nearest
+    const size_t nearest = b.t < 0.5 ? b.lo : b.hi;
+    *out = {taus[nearest], masses[nearest]};
+    return true;
+  }
+  *out = {tau, mass};
+  return true;
+}
+
+std::complex<double> SampleModel::PaperAt(double x, double lambda_nm) const {
+  TauMass tm;
+  if (!PaperTauMass(x, lambda_nm, &tm)) return EpsLinearAt(x, lambda_nm);
+  const double omega = OmegaEvFromLambdaNm(lambda_nm);
+  const double wp2 = kPlasmaEv2M3 * FreeElectronDensityM3(x, system()) / tm.mass_ratio;
+  const Complex<double> e = DrudePermittivity(omega, wp2, GammaEvFromTauFs(tm.tau_fs));
+  return {e.re, e.im};
+}
+
+nlohmann::json SampleModel::ParametersJson() const {
+  nlohmann::json samples = nlohmann::json::array();
+  for (const Node& node : nodes_) {
+    samples.push_back({{"x", node.x},
+                       {"source", node.nk.source},
+                       {"lambda_nm", node.nk.lambda_nm},
+                       {"n", node.nk.n},
+                       {"k", node.nk.k}});
+  }
+  return {{"interpolation", kind_ == Kind::kPaper ? "tau and m* linear in x (eq. 11, 12, 7)"
+                                                  : "eps linear in x"},
+          {"samples", samples}};
+}
+
+}  // namespace alloycolor

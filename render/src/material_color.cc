@@ -1,0 +1,122 @@
+#include "alloycolor/render/material_color.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "alloycolor/model/error.h"
+#include "alloycolor/model/optics.h"
+
+namespace alloycolor::render {
+
+ColorResult ColorFromXYZ(const Colorimeter& colorimeter, const XYZ& xyz) {
+  ColorResult c;
+  c.xyz = xyz;
+  c.lab = LabFromXYZ(xyz, colorimeter.White());
+  c.linear_srgb = LinearSRGBFromXYZ(xyz);
+  c.srgb8 = SRGB8FromLinear(c.linear_srgb);
+  c.paper_rgb = PaperRGBFromXYZ(xyz);
+  return c;
+}
+
+std::vector<double> EvaluationGrid(const Colorimeter& colorimeter, double lo_nm,
+                                   double hi_nm, const std::string& what) {
+  const std::vector<double>& grid = colorimeter.lambda_nm();
+  const double need_lo = std::max(380.0, grid.front());
+  const double need_hi = std::min(780.0, grid.back());
+  if (lo_nm > need_lo + 1e-9 || hi_nm < need_hi - 1e-9) {
+    std::ostringstream msg;
+    msg << what << ": covers " << lo_nm << "-" << hi_nm << " nm; colour needs "
+        << need_lo << "-" << need_hi << " nm";
+    throw Error(msg.str());
+  }
+  std::vector<double> held(grid.size());
+  for (size_t i = 0; i < grid.size(); ++i) held[i] = std::clamp(grid[i], lo_nm, hi_nm);
+  return held;
+}
+
+std::vector<std::complex<double>> IndexOnGrid(const Colorimeter& colorimeter,
+                                              const NkSpectrum& nk) {
+  const std::vector<double> grid = EvaluationGrid(colorimeter, nk.lambda_min_nm(),
+                                                  nk.lambda_max_nm(), nk.source);
+  std::vector<std::complex<double>> index(grid.size());
+  for (size_t i = 0; i < grid.size(); ++i) index[i] = NkAt(nk, grid[i]);
+  return index;
+}
+
+std::vector<std::complex<double>> IndexOnGrid(const Colorimeter& colorimeter,
+                                              const AlloyModel& model, double x_atomic) {
+  const std::vector<double> grid =
+      EvaluationGrid(colorimeter, model.lambda_min_nm(), model.lambda_max_nm(),
+                     "the " + model.method() + " model");
+  return model.Index(x_atomic, grid);
+}
+
+std::vector<double> ReflectanceSpectrum(const std::vector<std::complex<double>>& index,
+                                        double angle_deg) {
+  const double cos_psi = std::cos(angle_deg * M_PI / 180.0);
+  std::vector<double> r(index.size());
+  for (size_t i = 0; i < index.size(); ++i) {
+    const Complex<double> nk{index[i].real(), index[i].imag()};
+    r[i] = FresnelReflectance(nk, std::max(cos_psi, 0.0)).Average();
+  }
+  return r;
+}
+
+XYZ MaterialXYZ(const Colorimeter& colorimeter,
+                const std::vector<std::complex<double>>& index, double angle_deg) {
+  return colorimeter.ReflectanceToXYZ(ReflectanceSpectrum(index, angle_deg));
+}
+
+std::string HexColor(const std::array<std::uint8_t, 3>& srgb8) {
+  char buf[8];
+  std::snprintf(buf, sizeof buf, "#%02x%02x%02x", srgb8[0], srgb8[1], srgb8[2]);
+  return buf;
+}
+
+nlohmann::json ColorJson(const ColorResult& c) {
+  const double sum = c.xyz.X + c.xyz.Y + c.xyz.Z;
+  const RGB& s = c.linear_srgb;
+  const bool clipped = s.r < 0 || s.g < 0 || s.b < 0 || s.r > 1 || s.g > 1 || s.b > 1;
+  return {{"XYZ", {c.xyz.X, c.xyz.Y, c.xyz.Z}},
+          {"xyY", {sum > 0 ? c.xyz.X / sum : 0.0, sum > 0 ? c.xyz.Y / sum : 0.0, c.xyz.Y}},
+          {"Lab", {c.lab.L, c.lab.a, c.lab.b}},
+          {"linear_srgb", {s.r, s.g, s.b}},
+          {"srgb8", {c.srgb8[0], c.srgb8[1], c.srgb8[2]}},
+          {"srgb_hex", HexColor(c.srgb8)},
+          {"srgb_clipped", clipped},
+          {"paper_rgb", {c.paper_rgb.r, c.paper_rgb.g, c.paper_rgb.b}}};
+}
+
+}  // namespace alloycolor::render
+
+namespace alloycolor::render {
+
+double DeltaE00Sigma(const Colorimeter& colorimeter, const AlloyModel& model,
+                     double x_atomic, double angle_deg, int draws) {
+  if (!model.HasUncertainty() || draws <= 0) return -1.0;
+  const std::vector<double> grid =
+      EvaluationGrid(colorimeter, model.lambda_min_nm(), model.lambda_max_nm(),
+                     "the " + model.method() + " model");
+  const Lab central =
+      LabFromXYZ(MaterialXYZ(colorimeter, model.Index(x_atomic, grid), angle_deg),
+                 colorimeter.White());
+  double sum = 0;
+  const auto eps_draws = model.PermittivityDraws(x_atomic, grid, draws, 20261122u);
+  for (const auto& eps : eps_draws) {
+    std::vector<std::complex<double>> index(eps.size());
+    for (size_t i = 0; i < eps.size(); ++i) {
+      const Complex<double> nk =
+          IndexFromPermittivity(Complex<double>{eps[i].real(), eps[i].imag()});
+      index[i] = {nk.re, nk.im};
+    }
+    const Lab lab =
+        LabFromXYZ(MaterialXYZ(colorimeter, index, angle_deg), colorimeter.White());
+    const double de = DeltaE00(central, lab);
+    sum += de * de;
+  }
+  return eps_draws.empty() ? -1.0 : std::sqrt(sum / eps_draws.size());
+}
+
+}  // namespace alloycolor::render

@@ -1,0 +1,491 @@
+// Tests of alloycolor::render colorimetry against published references:
+//  - CIEDE2000: the 34 pairs of Sharma, Wu & Dalal, Color Res. Appl. 30(1)
+//  21-30 (2005),
+//    Table 1, as transcribed in Argyll CMS (beku/Argyll-Releases
+//    icc/testDE2K.c) and colour-science
+//    (colour/difference/tests/test_delta_e.py); the two agree row by row.
+//  - White points: ASTM E308 tristimulus values of the perfect reflecting
+//  diffuser (as in
+//    waacton/Unicolour Unicolour/Illuminants.cs; A, C, D50, D65 agree with CIE
+//    015:2018 to its two decimals, colour-science
+//    colour/colorimetry/datasets/illuminants/ tristimulus_values.py).
+//  - CIELAB: colour-science colour/models/tests/test_cie_lab.py (D65 white from
+//    xy = 0.3127, 0.3290); the linear branch and the breakpoint from CIE
+//    15:2004 by hand.
+//  - sRGB: IEC 61966-2-1 matrix, its rounded inverse and transfer-function
+//  breakpoints.
+#include "alloycolor/render/colorimetry.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <iterator>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "alloycolor/model/error.h"
+#include "test_util.h"
+
+namespace alloycolor::render {
+namespace {
+
+using alloycolor::testing::DataDir;
+
+// ---------------------------------------------------------------------------------------
+// CIEDE2000
+
+struct SharmaPair {
+  Lab lab1, lab2;
+  double delta_e00;
+};
+
+// Sharma, Wu & Dalal (2005), Table 1: pairs 1-34, dE00 printed to 4 decimals.
+const SharmaPair kSharmaPairs[] = {
+    {{50.0000, 2.6772, -79.7751}, {50.0000, 0.0000, -82.7485}, 2.0425},
+    {{50.0000, 3.1571, -77.2803}, {50.0000, 0.0000, -82.7485}, 2.8615},
+    {{50.0000, 2.8361, -74.0200}, {50.0000, 0.0000, -82.7485}, 3.4412},
+    {{50.0000, -1.3802, -84.2814}, {50.0000, 0.0000, -82.7485}, 1.0000},
+    {{50.0000, -1.1848, -84.8006}, {50.0000, 0.0000, -82.7485}, 1.0000},
+    {{50.0000, -0.9009, -85.5211}, {50.0000, 0.0000, -82.7485}, 1.0000},
+    {{50.0000, 0.0000, 0.0000}, {50.0000, -1.0000, 2.0000}, 2.3669},
+    {{50.0000, -1.0000, 2.0000}, {50.0000, 0.0000, 0.0000}, 2.3669},
+    {{50.0000, 2.4900, -0.0010}, {50.0000, -2.4900, 0.0009}, 7.1792},
+    {{50.0000, 2.4900, -0.0010}, {50.0000, -2.4900, 0.0010}, 7.1792},
+    {{50.0000, 2.4900, -0.0010}, {50.0000, -2.4900, 0.0011}, 7.2195},
+    {{50.0000, 2.4900, -0.0010}, {50.0000, -2.4900, 0.0012}, 7.2195},
+    {{50.0000, -0.0010, 2.4900}, {50.0000, 0.0009, -2.4900}, 4.8045},
+    {{50.0000, -0.0010, 2.4900}, {50.0000, 0.0010, -2.4900}, 4.8045},
+    {{50.0000, -0.0010, 2.4900}, {50.0000, 0.0011, -2.4900}, 4.7461},
+    {{50.0000, 2.5000, 0.0000}, {50.0000, 0.0000, -2.5000}, 4.3065},
+    {{50.0000, 2.5000, 0.0000}, {73.0000, 25.0000, -18.0000}, 27.1492},
+    {{50.0000, 2.5000, 0.0000}, {61.0000, -5.0000, 29.0000}, 22.8977},
+    {{50.0000, 2.5000, 0.0000}, {56.0000, -27.0000, -3.0000}, 31.9030},
+    {{50.0000, 2.5000, 0.0000}, {58.0000, 24.0000, 15.0000}, 19.4535},
+    {{50.0000, 2.5000, 0.0000}, {50.0000, 3.1736, 0.5854}, 1.0000},
+    {{50.0000, 2.5000, 0.0000}, {50.0000, 3.2972, 0.0000}, 1.0000},
+    {{50.0000, 2.5000, 0.0000}, {50.0000, 1.8634, 0.5757}, 1.0000},
+    {{50.0000, 2.5000, 0.0000}, {50.0000, 3.2592, 0.3350}, 1.0000},
+    {{60.2574, -34.0099, 36.2677}, {60.4626, -34.1751, 39.4387}, 1.2644},
+    {{63.0109, -31.0961, -5.8663}, {62.8187, -29.7946, -4.0864}, 1.2630},
+    {{61.2901, 3.7196, -5.3901}, {61.4292, 2.2480, -4.9620}, 1.8731},
+    {{35.0831, -44.1164, 3.7933}, {35.0232, -40.0716, 1.5901}, 1.8645},
+    {{22.7233, 20.0904, -46.6940}, {23.0331, 14.9730, -42.5619}, 2.0373},
+    {{36.4612, 47.8580, 18.3852}, {36.2715, 50.5065, 21.2231}, 1.4146},
+    {{90.8027, -2.0831, 1.4410}, {91.1528, -1.6435, 0.0447}, 1.4441},
+    {{90.9257, -0.5406, -0.9208}, {88.6381, -0.8985, -0.7239}, 1.5381},
+    {{6.7747, -0.2908, -2.4247}, {5.8714, -0.0985, -2.2286}, 0.6377},
+    {{2.0776, 0.0795, -1.1350}, {0.9033, -0.0636, -0.5514}, 0.9082},
+};
+
+// The published values are rounded to 4 decimals.
+constexpr double kSharmaTolerance = 1e-4;
+
+TEST(DeltaE00Test, MatchesAllSharmaWuDalalPairs) {
+  ASSERT_EQ(std::size(kSharmaPairs), 34u);
+  for (std::size_t i = 0; i < std::size(kSharmaPairs); ++i) {
+    const SharmaPair& pair = kSharmaPairs[i];
+    EXPECT_NEAR(DeltaE00(pair.lab1, pair.lab2), pair.delta_e00,
+                kSharmaTolerance)
+        << "Sharma pair " << i + 1;
+  }
+}
+
+TEST(DeltaE00Test, IsSymmetric) {
+  for (std::size_t i = 0; i < std::size(kSharmaPairs); ++i) {
+    const SharmaPair& pair = kSharmaPairs[i];
+    EXPECT_DOUBLE_EQ(DeltaE00(pair.lab1, pair.lab2),
+                     DeltaE00(pair.lab2, pair.lab1))
+        << "Sharma pair " << i + 1;
+  }
+}
+
+TEST(DeltaE00Test, IsZeroForIdenticalColours) {
+  for (const SharmaPair& pair : kSharmaPairs) {
+    EXPECT_EQ(DeltaE00(pair.lab1, pair.lab1), 0.0);
+  }
+  EXPECT_EQ(DeltaE00({0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}), 0.0);
+}
+
+TEST(DeltaE00Test, LightnessOnlyDifferenceAtMidGreyIsTheLightnessDifference) {
+  // With a = b = 0 and mean L = 50: S_L = 1 and the chroma and hue terms
+  // vanish.
+  EXPECT_NEAR(DeltaE00({49.0, 0.0, 0.0}, {51.0, 0.0, 0.0}), 2.0, 1e-12);
+}
+
+// ---------------------------------------------------------------------------------------
+// Colorimeter: white points and weights
+
+struct WhitePoint {
+  const char* illuminant;
+  int observer_deg;
+  double x, z;  // Y = 1
+};
+
+// ASTM E308 white points (1 nm tables), Y = 100 scaled to Y = 1.
+const WhitePoint kAstmWhitePoints[] = {
+    {"A", 2, 1.09850, 0.35585},    {"C", 2, 0.98074, 1.18232},
+    {"D50", 2, 0.96422, 0.82521},  {"D65", 2, 0.95047, 1.08883},
+    {"E", 2, 1.00000, 1.00000},    {"F2", 2, 0.99186, 0.67393},
+    {"F11", 2, 1.00962, 0.64350},  {"A", 10, 1.11144, 0.35200},
+    {"C", 10, 0.97285, 1.16145},   {"D50", 10, 0.96720, 0.81427},
+    {"D65", 10, 0.94811, 1.07304}, {"E", 10, 1.00000, 1.00000},
+    {"F2", 10, 1.03279, 0.69027},  {"F11", 10, 1.03863, 0.65607},
+};
+
+// Our sums run over 5 nm samples of the CIE tables (and over 380-780 nm for C,
+// D50, F2, F11), the ASTM values over 1 nm tables: they differ by up to 2.3e-4
+// (D50 2 deg Z).
+constexpr double kWhitePointTolerance = 1e-3;
+
+TEST(ColorimeterTest, PerfectReflectorMatchesAstmWhitePoints) {
+  for (const WhitePoint& expected : kAstmWhitePoints) {
+    SCOPED_TRACE(std::string(expected.illuminant) + " " +
+                 std::to_string(expected.observer_deg) + " deg");
+    const Colorimeter colorimeter = Colorimeter::Load(
+        DataDir(), expected.illuminant, expected.observer_deg);
+    const XYZ white = colorimeter.White();
+    EXPECT_NEAR(white.X, expected.x, kWhitePointTolerance);
+    EXPECT_EQ(white.Y, 1.0);
+    EXPECT_NEAR(white.Z, expected.z, kWhitePointTolerance);
+
+    const std::vector<double> ones(colorimeter.lambda_nm().size(), 1.0);
+    const XYZ summed = colorimeter.ReflectanceToXYZ(ones);
+    EXPECT_EQ(summed.X, white.X);
+    EXPECT_EQ(summed.Y, 1.0);
+    EXPECT_EQ(summed.Z, white.Z);
+  }
+}
+
+TEST(ColorimeterTest, UsesTheCommonFiveNanometreGrid) {
+  struct Range {
+    const char* illuminant;
+    double first_nm, last_nm;
+  };
+  const Range ranges[] = {{"A", 360, 830},   {"C", 380, 780}, {"D50", 380, 780},
+                          {"D65", 360, 830}, {"E", 380, 830}, {"F2", 380, 780},
+                          {"F11", 380, 780}};
+  for (int observer_deg : {2, 10}) {
+    for (const Range& range : ranges) {
+      SCOPED_TRACE(range.illuminant);
+      const Colorimeter colorimeter =
+          Colorimeter::Load(DataDir(), range.illuminant, observer_deg);
+      const std::vector<double>& lambda_nm = colorimeter.lambda_nm();
+      ASSERT_EQ(
+          lambda_nm.size(),
+          static_cast<std::size_t>((range.last_nm - range.first_nm) / 5 + 1));
+      for (std::size_t i = 0; i < lambda_nm.size(); ++i) {
+        EXPECT_EQ(lambda_nm[i], range.first_nm + 5.0 * static_cast<double>(i));
+      }
+      EXPECT_EQ(colorimeter.wx().size(), lambda_nm.size());
+      EXPECT_EQ(colorimeter.wy().size(), lambda_nm.size());
+      EXPECT_EQ(colorimeter.wz().size(), lambda_nm.size());
+    }
+  }
+}
+
+TEST(ColorimeterTest, ConstantReflectanceScalesTheWhite) {
+  const Colorimeter colorimeter = Colorimeter::Load(DataDir(), "D65", 2);
+  const std::vector<double> half(colorimeter.lambda_nm().size(), 0.5);
+  const XYZ xyz = colorimeter.ReflectanceToXYZ(half);
+  EXPECT_NEAR(xyz.Y, 0.5, 1e-15);
+  EXPECT_NEAR(xyz.X, 0.5 * colorimeter.White().X, 1e-15);
+  EXPECT_NEAR(xyz.Z, 0.5 * colorimeter.White().Z, 1e-15);
+  const XYZ from_pointer = colorimeter.ReflectanceToXYZ(half.data());
+  EXPECT_EQ(from_pointer.X, xyz.X);
+  EXPECT_EQ(from_pointer.Y, xyz.Y);
+  EXPECT_EQ(from_pointer.Z, xyz.Z);
+}
+
+TEST(ColorimeterTest, WeightsAreTheNormalisedProducts) {
+  // D65 at 560 nm (5 nm tables): the weight ratio wx/wy is x_bar/y_bar at that
+  // row.
+  const Colorimeter colorimeter = Colorimeter::Load(DataDir(), "D65", 2);
+  const std::vector<double>& lambda_nm = colorimeter.lambda_nm();
+  const std::size_t i = (560 - 360) / 5;
+  ASSERT_EQ(lambda_nm[i], 560.0);
+  // CIE 1931 at 560 nm: x_bar = 0.5945, y_bar = 0.995, z_bar = 0.0039.
+  EXPECT_NEAR(colorimeter.wx()[i] / colorimeter.wy()[i], 0.5945 / 0.995, 1e-4);
+  EXPECT_NEAR(colorimeter.wz()[i] / colorimeter.wy()[i], 0.0039 / 0.995, 1e-4);
+  double sum = 0.0;
+  for (double w : colorimeter.wy()) sum += w;
+  EXPECT_EQ(sum, 1.0);
+}
+
+TEST(ColorimeterTest, IlluminantNamesAreCaseInsensitive) {
+  EXPECT_EQ(IlluminantNames(), (std::vector<std::string>{"A", "C", "D50", "D65",
+                                                         "E", "F2", "F11"}));
+  const Colorimeter lower = Colorimeter::Load(DataDir(), "d65", 10);
+  EXPECT_EQ(lower.illuminant(), "D65");
+  EXPECT_EQ(lower.observer_deg(), 10);
+  EXPECT_EQ(Colorimeter::Load(DataDir(), "f11", 2).illuminant(), "F11");
+  EXPECT_EQ(lower.White().X, Colorimeter::Load(DataDir(), "D65", 10).White().X);
+}
+
+// Returns the message of the Error thrown by f, or fails.
+template <typename F>
+std::string ErrorMessage(F f) {
+  try {
+    f();
+  } catch (const Error& error) {
+    const std::string message = error.what();
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    return message;
+  }
+  ADD_FAILURE() << "no alloycolor::Error thrown";
+  return "";
+}
+
+TEST(ColorimeterTest, UnknownIlluminantListsTheValidNames) {
+  const std::string message =
+      ErrorMessage([] { Colorimeter::Load(DataDir(), "D66", 2); });
+  EXPECT_NE(message.find("D66"), std::string::npos) << message;
+  for (const std::string& name : IlluminantNames()) {
+    EXPECT_NE(message.find(name), std::string::npos) << message;
+  }
+}
+
+TEST(ColorimeterTest, UnknownObserverIsRefused) {
+  const std::string message =
+      ErrorMessage([] { Colorimeter::Load(DataDir(), "D65", 5); });
+  EXPECT_NE(message.find('5'), std::string::npos) << message;
+  EXPECT_NE(message.find("10"), std::string::npos) << message;
+}
+
+TEST(ColorimeterTest, WrongReflectanceLengthIsRefused) {
+  const Colorimeter colorimeter = Colorimeter::Load(DataDir(), "D65", 2);
+  const std::string message = ErrorMessage(
+      [&] { colorimeter.ReflectanceToXYZ(std::vector<double>(81, 0.5)); });
+  EXPECT_NE(message.find("81"), std::string::npos) << message;
+  EXPECT_NE(message.find("95"), std::string::npos) << message;
+}
+
+// A data folder whose cie/illuminant-D65.csv has the given text (the observer
+// tables are copied from the real data folder).
+std::string DataDirWithD65(const std::string& d65_text) {
+  const std::string dir = alloycolor::testing::MakeTempDir();
+  std::filesystem::create_directories(dir + "/cie");
+  std::filesystem::copy_file(DataDir() + "/cie/cmf-1931-2.csv",
+                             dir + "/cie/cmf-1931-2.csv");
+  alloycolor::testing::WriteText(dir + "/cie/illuminant-D65.csv", d65_text);
+  return dir;
+}
+
+// D65 rows at 5 nm from 300 to 830 nm, all with value 1, optionally with one
+// line replaced.
+std::string D65Text(int replaced_nm = -1, const std::string& replacement = "") {
+  std::string text = "# test table\nlambda_nm,value\n";
+  for (int lambda_nm = 300; lambda_nm <= 830; lambda_nm += 5) {
+    if (lambda_nm == replaced_nm) {
+      if (!replacement.empty()) text += replacement + "\n";
+    } else {
+      text += std::to_string(lambda_nm) + ",1\n";
+    }
+  }
+  return text;
+}
+
+TEST(ColorimeterTest, DamagedTablesNameTheFileAndLine) {
+  // Line 3 holds 300 nm, so 310 nm is on line 5.
+  struct Case {
+    std::string text, expected_location, expected_words;
+  };
+  const Case cases[] = {
+      {D65Text(310, "310,abc"), ":5:", "abc"},
+      {D65Text(310, "310,1,2"), ":5:", "fields"},
+      {D65Text(310, "310,"), ":5:", "number"},
+      {D65Text(310, "300,1"), ":5:", "increase"},
+      {D65Text(310, "310,-1"), ":5:", "negative"},
+      {"# test table\nlambda,value\n300,1\n", ":2:", "header"},
+      {D65Text(560), "illuminant-D65.csv", "560 nm"},
+      {"# only a comment\n", "illuminant-D65.csv", "header"},
+  };
+  for (const Case& c : cases) {
+    const std::string dir = DataDirWithD65(c.text);
+    const std::string path = dir + "/cie/illuminant-D65.csv";
+    const std::string message =
+        ErrorMessage([&] { Colorimeter::Load(dir, "D65", 2); });
+    EXPECT_NE(message.find(path), std::string::npos) << message;
+    EXPECT_NE(message.find(c.expected_location), std::string::npos) << message;
+    EXPECT_NE(message.find(c.expected_words), std::string::npos) << message;
+    std::filesystem::remove_all(dir);
+  }
+}
+
+TEST(ColorimeterTest, MissingTableIsNamed) {
+  const std::string dir = alloycolor::testing::MakeTempDir();
+  const std::string message =
+      ErrorMessage([&] { Colorimeter::Load(dir, "A", 2); });
+  EXPECT_NE(message.find(dir + "/cie/illuminant-A.csv"), std::string::npos)
+      << message;
+  std::filesystem::remove_all(dir);
+}
+
+TEST(ColorimeterTest, FlatTestIlluminantGivesTheCmfSums) {
+  // A flat illuminant on 300-830 nm (CMF 360-830 nm) is illuminant E on the
+  // CMF's range.
+  const std::string dir = DataDirWithD65(D65Text());
+  const Colorimeter flat = Colorimeter::Load(dir, "D65", 2);
+  EXPECT_EQ(flat.lambda_nm().front(), 360.0);
+  EXPECT_EQ(flat.lambda_nm().back(), 830.0);
+  EXPECT_NEAR(flat.White().X, 1.0, kWhitePointTolerance);
+  EXPECT_NEAR(flat.White().Z, 1.0, kWhitePointTolerance);
+  std::filesystem::remove_all(dir);
+}
+
+// ---------------------------------------------------------------------------------------
+// RGB
+
+TEST(SRGBTest, D65WhiteIsLinearWhite) {
+  // Matrix rounding (4 decimals) and 5 nm summation leave |rgb - 1| < 1e-4
+  // here.
+  const XYZ white = Colorimeter::Load(DataDir(), "D65", 2).White();
+  const RGB rgb = LinearSRGBFromXYZ(white);
+  EXPECT_NEAR(rgb.r, 1.0, 5e-4);
+  EXPECT_NEAR(rgb.g, 1.0, 5e-4);
+  EXPECT_NEAR(rgb.b, 1.0, 5e-4);
+}
+
+TEST(SRGBTest, MatrixRowsAreTheStandardOnes) {
+  // IEC 61966-2-1 eq. (5), XYZ -> RGB.
+  const RGB x = LinearSRGBFromXYZ({1, 0, 0});
+  const RGB y = LinearSRGBFromXYZ({0, 1, 0});
+  const RGB z = LinearSRGBFromXYZ({0, 0, 1});
+  EXPECT_EQ(x.r, 3.2406);
+  EXPECT_EQ(y.r, -1.5372);
+  EXPECT_EQ(z.r, -0.4986);
+  EXPECT_EQ(x.g, -0.9689);
+  EXPECT_EQ(y.g, 1.8758);
+  EXPECT_EQ(z.g, 0.0415);
+  EXPECT_EQ(x.b, 0.0557);
+  EXPECT_EQ(y.b, -0.2040);
+  EXPECT_EQ(z.b, 1.0570);
+}
+
+TEST(SRGBTest, InverseMatchesTheStandardInverse) {
+  // IEC 61966-2-1 RGB -> XYZ, printed to 4 decimals.
+  const double expected[3][3] = {{0.4124, 0.3576, 0.1805},
+                                 {0.2126, 0.7152, 0.0722},
+                                 {0.0193, 0.1192, 0.9505}};
+  const RGB primaries[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  for (int j = 0; j < 3; ++j) {
+    const XYZ xyz = XYZFromLinearSRGB(primaries[j]);
+    EXPECT_NEAR(xyz.X, expected[0][j], 1e-4);
+    EXPECT_NEAR(xyz.Y, expected[1][j], 1e-4);
+    EXPECT_NEAR(xyz.Z, expected[2][j], 1e-4);
+  }
+}
+
+TEST(SRGBTest, MatrixRoundTrip) {
+  const XYZ xyz{0.20654008, 0.12197225, 0.05136952};
+  const XYZ back = XYZFromLinearSRGB(LinearSRGBFromXYZ(xyz));
+  EXPECT_NEAR(back.X, xyz.X, 1e-14);
+  EXPECT_NEAR(back.Y, xyz.Y, 1e-14);
+  EXPECT_NEAR(back.Z, xyz.Z, 1e-14);
+}
+
+TEST(SRGBTest, TransferFunctionBreakpoints) {
+  // IEC 61966-2-1: 0.0031308 linear <-> 0.04045 encoded (the two segments meet
+  // there to within the printed digits).
+  EXPECT_NEAR(SRGBEncode(0.0031308), 0.04045, 1e-6);
+  EXPECT_NEAR(SRGBDecode(0.04045), 0.0031308, 1e-8);
+  EXPECT_NEAR(1.055 * std::pow(0.0031308, 1 / 2.4) - 0.055,
+              SRGBEncode(0.0031308), 1e-7);
+  EXPECT_DOUBLE_EQ(SRGBEncode(0.001), 0.01292);
+  EXPECT_EQ(SRGBEncode(0.0), 0.0);
+  EXPECT_NEAR(SRGBEncode(1.0), 1.0, 1e-15);
+  EXPECT_NEAR(SRGBDecode(1.0), 1.0, 1e-15);
+  // 8-bit 128 decodes to 0.2158605 (((128/255 + 0.055)/1.055)^2.4, computed by
+  // hand).
+  EXPECT_NEAR(SRGBDecode(128.0 / 255.0), 0.2158605, 1e-7);
+}
+
+TEST(SRGBTest, EncodeDecodeRoundTrip) {
+  for (int i = 0; i <= 1000; ++i) {
+    const double linear = i / 1000.0;
+    EXPECT_NEAR(SRGBDecode(SRGBEncode(linear)), linear, 1e-14) << linear;
+    EXPECT_NEAR(SRGBEncode(SRGBDecode(linear)), linear, 1e-14) << linear;
+  }
+}
+
+TEST(SRGBTest, EightBitClampsAndRounds) {
+  using Bytes = std::array<std::uint8_t, 3>;
+  EXPECT_EQ(SRGB8FromLinear({0, 0, 0}), (Bytes{0, 0, 0}));
+  EXPECT_EQ(SRGB8FromLinear({1, 1, 1}), (Bytes{255, 255, 255}));
+  EXPECT_EQ(
+      SRGB8FromLinear({-0.5, 2.0, std::numeric_limits<double>::quiet_NaN()}),
+      (Bytes{0, 255, 0}));
+  EXPECT_EQ(SRGB8FromLinear({0.2158605, SRGBDecode(1.0 / 255.0),
+                             SRGBDecode(254.0 / 255.0)}),
+            (Bytes{128, 1, 254}));
+}
+
+TEST(PaperRGBTest, UsesThePapersCoefficients) {
+  const RGB x = PaperRGBFromXYZ({1, 0, 0});
+  const RGB y = PaperRGBFromXYZ({0, 1, 0});
+  const RGB z = PaperRGBFromXYZ({0, 0, 1});
+  EXPECT_EQ(x.r, 1.90);
+  EXPECT_EQ(y.r, -0.53);
+  EXPECT_EQ(z.r, -0.29);
+  EXPECT_EQ(x.g, -0.99);
+  EXPECT_EQ(y.g, 2.00);
+  EXPECT_EQ(z.g, -0.03);
+  EXPECT_EQ(x.b, 0.06);
+  EXPECT_EQ(y.b, -0.12);
+  EXPECT_EQ(z.b, 0.90);
+}
+
+// ---------------------------------------------------------------------------------------
+// CIELAB
+
+TEST(LabTest, WhiteIsOneHundredNeutral) {
+  for (const char* illuminant : {"A", "D65", "F11"}) {
+    const XYZ white = Colorimeter::Load(DataDir(), illuminant, 2).White();
+    const Lab lab = LabFromXYZ(white, white);
+    EXPECT_NEAR(lab.L, 100.0, 1e-12);
+    EXPECT_NEAR(lab.a, 0.0, 1e-12);
+    EXPECT_NEAR(lab.b, 0.0, 1e-12);
+  }
+}
+
+TEST(LabTest, MatchesColourScienceReference) {
+  // colour.XYZ_to_Lab([0.07049534, 0.10080000, 0.09558313], xy = (0.31270,
+  // 0.32900)).
+  const XYZ white{0.31270 / 0.32900, 1.0, (1.0 - 0.31270 - 0.32900) / 0.32900};
+  const Lab lab = LabFromXYZ({0.07049534, 0.10080000, 0.09558313}, white);
+  EXPECT_NEAR(lab.L, 37.98562910, 1e-7);
+  EXPECT_NEAR(lab.a, -22.61920654, 1e-7);
+  EXPECT_NEAR(lab.b, 4.19811236, 1e-7);
+}
+
+TEST(LabTest, UsesTheWhitesScale) {
+  const XYZ white{0.95047, 1.0, 1.08883};
+  const XYZ white100{95.047, 100.0, 108.883};
+  const Lab lab = LabFromXYZ({0.3, 0.2, 0.1}, white);
+  const Lab lab100 = LabFromXYZ({30.0, 20.0, 10.0}, white100);
+  EXPECT_NEAR(lab.L, lab100.L, 1e-12);
+  EXPECT_NEAR(lab.a, lab100.a, 1e-12);
+  EXPECT_NEAR(lab.b, lab100.b, 1e-12);
+}
+
+TEST(LabTest, LinearBranchAndBreakpoint) {
+  // CIE 15:2004: L* = (24389/27) Y/Yn below Y/Yn = 216/24389, where L* = 8 from
+  // both sides.
+  const XYZ white{1.0, 1.0, 1.0};
+  EXPECT_NEAR(LabFromXYZ({0.005, 0.005, 0.005}, white).L,
+              24389.0 / 27.0 * 0.005, 1e-12);
+  const double t = 216.0 / 24389.0;
+  EXPECT_NEAR(LabFromXYZ({t, t, t}, white).L, 8.0, 1e-12);
+  EXPECT_NEAR(LabFromXYZ({t * (1 + 1e-12), t, t}, white).L, 8.0, 1e-9);
+  EXPECT_NEAR(116.0 * std::cbrt(t) - 16.0, 8.0, 1e-12);
+  // a* and b* in the linear branch: 500 (f(X) - f(Y)) with f(t) = (24389/27 t +
+  // 16)/116.
+  const Lab dark = LabFromXYZ({0.004, 0.002, 0.001}, white);
+  EXPECT_NEAR(dark.a, 500.0 * 24389.0 / 27.0 * 0.002 / 116.0, 1e-12);
+  EXPECT_NEAR(dark.b, 200.0 * 24389.0 / 27.0 * 0.001 / 116.0, 1e-12);
+}
+
+}  // namespace
+}  // namespace alloycolor::render

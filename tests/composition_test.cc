@@ -1,0 +1,137 @@
+// Tests of elements and compositions (model/composition.h) against hand calculations
+// from the IUPAC atomic weights and CRC densities in the element table.
+#include "alloycolor/model/composition.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "alloycolor/model/error.h"
+
+namespace alloycolor {
+namespace {
+
+using ::testing::HasSubstr;
+
+constexpr double kAuMass = 196.966570;  // IUPAC standard atomic weights
+constexpr double kAgMass = 107.8682;
+constexpr double kSnMass = 118.710;
+constexpr double kNbMass = 92.90637;
+
+AlloySystem System(const char* a, const char* b) { return {FindElement(a), FindElement(b)}; }
+
+std::string ErrorOf(const std::string& text, const AlloySystem& system) {
+  try {
+    ParseComposition(text, system);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no Error for '" << text << "'";
+  return "";
+}
+
+TEST(ElementTest, TableValues) {
+  EXPECT_EQ(FindElement("Au").atomic_mass, kAuMass);
+  EXPECT_EQ(FindElement("Ag").atomic_mass, kAgMass);
+  EXPECT_EQ(FindElement("Au").valence, 1);
+  EXPECT_EQ(FindElement("Zn").valence, 2);
+  EXPECT_EQ(FindElement("Sn").valence, 4);
+  EXPECT_EQ(FindElement("Nb").valence, 1);
+  EXPECT_EQ(std::string(FindElement("Cu").symbol), "Cu");
+  EXPECT_EQ(System("Au", "Ag").Name(), "Au-Ag");
+}
+
+TEST(ElementTest, UnknownElementIsAnError) {
+  try {
+    FindElement("Xx");
+    FAIL() << "no Error";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("unknown element 'Xx'"));
+  }
+  EXPECT_THROW(FindElement("au"), Error);  // symbols are case-sensitive
+  EXPECT_THROW(FindElement(""), Error);
+}
+
+TEST(CompositionTest, EighteenKaratGoldWithSilver) {
+  // w_Au = 18/24 = 0.75; x = (0.75 / M_Au) / (0.75 / M_Au + 0.25 / M_Ag) = 0.62163...
+  const double by_hand = (0.75 / kAuMass) / (0.75 / kAuMass + 0.25 / kAgMass);
+  const AlloySystem au_ag = System("Au", "Ag");
+  EXPECT_NEAR(by_hand, 0.62163, 1e-5);
+  EXPECT_NEAR(AtomicFromWeightFraction(0.75, au_ag), by_hand, 1e-14);
+  for (const char* text : {"18k", "18K", "18kt", " 18 kt ", "75wt%", "75 wt%", "75WT%"}) {
+    SCOPED_TRACE(text);
+    EXPECT_NEAR(ParseComposition(text, au_ag), by_hand, 1e-14);
+  }
+  // With gold as element b the composition is that of silver: 1 - x_Au.
+  EXPECT_NEAR(ParseComposition("18k", System("Ag", "Au")), 1 - by_hand, 1e-14);
+  EXPECT_NEAR(ParseComposition("24k", au_ag), 1.0, 1e-15);
+  EXPECT_NEAR(ParseComposition("0k", au_ag), 0.0, 1e-15);
+}
+
+TEST(CompositionTest, AtomicFractionAndPercent) {
+  const AlloySystem au_ag = System("Au", "Ag");
+  EXPECT_DOUBLE_EQ(ParseComposition("0.75", au_ag), 0.75);
+  EXPECT_DOUBLE_EQ(ParseComposition("75at%", au_ag), 0.75);
+  EXPECT_DOUBLE_EQ(ParseComposition("75 at%", au_ag), 0.75);
+  EXPECT_DOUBLE_EQ(ParseComposition("1", au_ag), 1.0);
+  EXPECT_DOUBLE_EQ(ParseComposition("0", au_ag), 0.0);
+  EXPECT_DOUBLE_EQ(ParseComposition("+.5", au_ag), 0.5);
+}
+
+TEST(CompositionTest, WeightAtomicRoundTrip) {
+  const AlloySystem sn_nb = System("Sn", "Nb");
+  for (double w : {0.0, 0.06, 0.22, 0.5, 0.55, 0.999, 1.0}) {
+    SCOPED_TRACE(w);
+    EXPECT_NEAR(WeightFromAtomicFraction(AtomicFromWeightFraction(w, sn_nb), sn_nb), w, 1e-14);
+  }
+  // 6 wt% Sn in Nb, by hand: (0.06 / 118.710) / (0.06 / 118.710 + 0.94 / 92.90637).
+  EXPECT_NEAR(AtomicFromWeightFraction(0.06, sn_nb), 0.0475785, 1e-7);
+  const double x = (0.06 / kSnMass) / (0.06 / kSnMass + 0.94 / kNbMass);
+  EXPECT_NEAR(AtomicFromWeightFraction(0.06, sn_nb), x, 1e-15);
+  EXPECT_THROW(AtomicFromWeightFraction(1.5, sn_nb), Error);
+  EXPECT_THROW(WeightFromAtomicFraction(-0.1, sn_nb), Error);
+}
+
+TEST(CompositionTest, BadTextIsNamed) {
+  const AlloySystem au_ag = System("Au", "Ag");
+  const AlloySystem cu_zn = System("Cu", "Zn");
+  EXPECT_THAT(ErrorOf("18k", cu_zn), HasSubstr("'18k'"));
+  EXPECT_THAT(ErrorOf("18k", cu_zn), HasSubstr("gold alloys only, not to Cu-Zn"));
+  EXPECT_THAT(ErrorOf("75%", au_ag), HasSubstr("'75%' is ambiguous: write at%"));
+  EXPECT_THAT(ErrorOf("75%", au_ag), HasSubstr("wt%"));
+  EXPECT_THAT(ErrorOf("1.5", au_ag), HasSubstr("'1.5' lies outside [0, 1]"));
+  EXPECT_THAT(ErrorOf("-0.1", au_ag), HasSubstr("'-0.1'"));
+  EXPECT_THAT(ErrorOf("75", au_ag), HasSubstr("'75'"));
+  EXPECT_THAT(ErrorOf("25k", au_ag), HasSubstr("'25k' lies outside 0 to 24 karat"));
+  EXPECT_THAT(ErrorOf("101wt%", au_ag), HasSubstr("'101wt%'"));
+  EXPECT_THAT(ErrorOf("-1at%", au_ag), HasSubstr("'-1at%'"));
+  EXPECT_THAT(ErrorOf("abc", au_ag), HasSubstr("'abc'"));
+  EXPECT_THAT(ErrorOf("nan", au_ag), HasSubstr("'nan'"));
+  EXPECT_THAT(ErrorOf("inf", au_ag), HasSubstr("'inf'"));
+  EXPECT_THAT(ErrorOf("0.5x", au_ag), HasSubstr("'0.5x'"));
+  EXPECT_THAT(ErrorOf("wt%", au_ag), HasSubstr("'wt%'"));
+  EXPECT_THAT(ErrorOf("k", au_ag), HasSubstr("'k'"));
+  EXPECT_THAT(ErrorOf("", au_ag), HasSubstr("empty composition"));
+}
+
+TEST(FreeElectronDensityTest, GoldMatchesAshcroftMermin) {
+  // Ashcroft & Mermin, Table 1.1: gold, Z = 1, N_e = 5.90e22 cm^-3.
+  const AlloySystem au_ag = System("Au", "Ag");
+  EXPECT_NEAR(FreeElectronDensityM3(1.0, au_ag), 5.90e28, 0.01 * 5.90e28);
+  // Silver: 5.86e22 cm^-3.
+  EXPECT_NEAR(FreeElectronDensityM3(0.0, au_ag), 5.86e28, 0.01 * 5.86e28);
+}
+
+TEST(FreeElectronDensityTest, ZenLawByHand) {
+  // Au50Ag50: Z = 1; V = 0.5 (196.966570 / 19.3) + 0.5 (107.8682 / 10.5) cm^3/mol.
+  const double volume_cm3 = 0.5 * kAuMass / 19.3 + 0.5 * kAgMass / 10.5;
+  const double by_hand = 6.02214076e23 / (volume_cm3 * 1e-6);
+  EXPECT_NEAR(FreeElectronDensityM3(0.5, System("Au", "Ag")), by_hand, 1e-12 * by_hand);
+  // Cu-Zn: Z mixes linearly too; pure zinc has Z = 2 (A&M: 13.2e22 cm^-3).
+  EXPECT_NEAR(FreeElectronDensityM3(0.0, System("Cu", "Zn")), 13.2e28, 0.01 * 13.2e28);
+  EXPECT_THROW(FreeElectronDensityM3(1.1, System("Cu", "Zn")), Error);
+}
+
+}  // namespace
+}  // namespace alloycolor

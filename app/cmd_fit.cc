@@ -24,7 +24,7 @@ struct FitOptions {
   std::string out;
   std::string from;
   int degree = -1;
-  int max_degree = 4;
+  int max_degree = 6;
   double smoothing = 1e-3;
   double lambda_from = 0, lambda_to = 0, lambda_step = 5;
   bool no_covariance = false;

@@ -223,12 +223,13 @@ struct SolveStats {
   bool converged = false;
   std::string termination;
   size_t data_residuals = 0;
+  double residual_variance = 0, variance_used = 0;
   std::vector<std::vector<double>> covariance;
 };
 
 template <int kNb>
 SolveStats Solve(const GridData& g, const std::vector<char>& in, const Basis& basis,
-                 const SmoothFitOptions& options, bool want_covariance,
+                 const SmoothFitOptions& options, bool want_covariance, double min_variance,
                  std::vector<std::vector<double>>* coeffs) {
   const size_t nodes = g.grid_nm.size();
   ceres::Problem::Options problem_options;
@@ -297,7 +298,9 @@ SolveStats Solve(const GridData& g, const std::vector<char>& in, const Basis& ba
     if (covariance.Compute(pairs, &problem)) {
       const double params = static_cast<double>(nodes * 2 * kNb);
       const double dof = std::max(static_cast<double>(stats.data_residuals) - params, 1.0);
-      const double variance = stats.data_sum_sq / dof;
+      stats.residual_variance = stats.data_sum_sq / dof;
+      const double variance = std::max(stats.residual_variance, min_variance);
+      stats.variance_used = variance;
       stats.covariance.resize(nodes);
       for (size_t j = 0; j < nodes; ++j) {
         std::vector<double> block(4 * kNb * kNb);
@@ -312,17 +315,17 @@ SolveStats Solve(const GridData& g, const std::vector<char>& in, const Basis& ba
 
 SolveStats SolveAny(int nb, const GridData& g, const std::vector<char>& in,
                     const Basis& basis, const SmoothFitOptions& options, bool want_covariance,
-                    std::vector<std::vector<double>>* coeffs) {
+                    double min_variance, std::vector<std::vector<double>>* coeffs) {
   switch (nb) {
-    case 1: return Solve<1>(g, in, basis, options, want_covariance, coeffs);
-    case 2: return Solve<2>(g, in, basis, options, want_covariance, coeffs);
-    case 3: return Solve<3>(g, in, basis, options, want_covariance, coeffs);
-    case 4: return Solve<4>(g, in, basis, options, want_covariance, coeffs);
-    case 5: return Solve<5>(g, in, basis, options, want_covariance, coeffs);
-    case 6: return Solve<6>(g, in, basis, options, want_covariance, coeffs);
-    case 7: return Solve<7>(g, in, basis, options, want_covariance, coeffs);
-    case 8: return Solve<8>(g, in, basis, options, want_covariance, coeffs);
-    case 9: return Solve<9>(g, in, basis, options, want_covariance, coeffs);
+    case 1: return Solve<1>(g, in, basis, options, want_covariance, min_variance, coeffs);
+    case 2: return Solve<2>(g, in, basis, options, want_covariance, min_variance, coeffs);
+    case 3: return Solve<3>(g, in, basis, options, want_covariance, min_variance, coeffs);
+    case 4: return Solve<4>(g, in, basis, options, want_covariance, min_variance, coeffs);
+    case 5: return Solve<5>(g, in, basis, options, want_covariance, min_variance, coeffs);
+    case 6: return Solve<6>(g, in, basis, options, want_covariance, min_variance, coeffs);
+    case 7: return Solve<7>(g, in, basis, options, want_covariance, min_variance, coeffs);
+    case 8: return Solve<8>(g, in, basis, options, want_covariance, min_variance, coeffs);
+    case 9: return Solve<9>(g, in, basis, options, want_covariance, min_variance, coeffs);
   }
   throw Error("smooth fit: degree must lie in 0.." + std::to_string(kSmoothMaxDegree));
 }
@@ -341,6 +344,26 @@ double SampleRms(const GridData& g, size_t i, const Basis& basis, int nb,
     ++count;
   }
   return count ? std::sqrt(sum / (2.0 * count)) : 0.0;
+}
+
+// RMS error of sample i's normal-incidence reflectance (usable nodes only): what colour
+// depends on, and the score cross-validation minimises.
+double SampleReflectanceRms(const GridData& g, size_t i, const Basis& basis, int nb,
+                            const std::vector<std::vector<double>>& coeffs) {
+  double p[kSmoothMaxDegree + 1];
+  LegendreBasis(basis.U(g.x[i]), nb - 1, p);
+  double sum = 0;
+  int count = 0;
+  for (size_t j = 0; j < g.grid_nm.size(); ++j) {
+    if (!g.usable[i][j]) continue;
+    const Complex<double> model =
+        IndexFromPermittivity(SmoothNodePermittivity(coeffs[j].data(), p, nb, g.omega_ev[j]));
+    const Complex<double> measured = IndexFromPermittivity(
+        Complex<double>{g.eps[i][j].real(), g.eps[i][j].imag()});
+    sum += std::pow(NormalReflectance(model) - NormalReflectance(measured), 2);
+    ++count;
+  }
+  return count ? std::sqrt(sum / count) : 0.0;
 }
 
 }  // namespace
@@ -364,37 +387,44 @@ SmoothFitResult FitSmooth(const Dataset& dataset, const SmoothFitOptions& option
   if (degree > kSmoothMaxDegree) {
     throw Error("smooth fit: degree must lie in 0.." + std::to_string(kSmoothMaxDegree));
   }
+  double cv_variance = 0;  // mean squared left-out residual at the chosen degree
   if (degree < 0) {
-    // Leave-one-composition-out over the interior samples: each left-out sample is
-    // predicted by a fit to the others.
+    // Leave-one-composition-out over the interior samples. A fold has one sample fewer,
+    // so it is fitted with one degree less than the final fit: both then leave the same
+    // number of degrees of freedom, and the score says how well a fit of that flexibility
+    // predicts a composition it has not seen.
     const int max_degree =
-        std::min<int>(std::min(options.max_degree, kSmoothMaxDegree), static_cast<int>(n) - 2);
+        std::min<int>(std::min(options.max_degree, kSmoothMaxDegree), static_cast<int>(n) - 1);
     if (n < 3 || max_degree < 1) {
-      degree = static_cast<int>(std::min<size_t>(n - 1, 1));
+      degree = std::max(0, std::min<int>(static_cast<int>(n) - 1, 1));
     } else {
       double best = 1e300;
       for (int d = 1; d <= max_degree; ++d) {
-        const int nb = d + 1;
-        double sum = 0;
+        const int fold_nb = d;  // degree d - 1
+        double sum = 0, sum_r = 0;
         int folds = 0;
         for (size_t out = 1; out + 1 < n; ++out) {
           std::vector<char> in = AllSamples(g);
           in[out] = 0;
-          auto coeffs = StartFromInversion(g, in, basis, nb);
-          SolveAny(nb, g, in, basis, options, false, &coeffs);
-          const double rms = SampleRms(g, out, basis, nb, coeffs);
+          auto coeffs = StartFromInversion(g, in, basis, fold_nb);
+          SolveAny(fold_nb, g, in, basis, options, false, 0.0, &coeffs);
+          const double rms = SampleRms(g, out, basis, fold_nb, coeffs);
+          const double rms_r = SampleReflectanceRms(g, out, basis, fold_nb, coeffs);
           sum += rms * rms;
+          sum_r += rms_r * rms_r;
           ++folds;
         }
         const double rms = std::sqrt(sum / folds);
-        result.cross_validation.push_back({d, rms});
+        const double rms_r = std::sqrt(sum_r / folds);
+        result.cross_validation.push_back({d, rms, rms_r});
         std::ostringstream msg;
-        msg << "cross-validation: degree " << d << ", leave-one-out RMS relative eps error "
-            << rms;
+        msg << "cross-validation: degree " << d << ", leave-one-out RMS error: relative eps "
+            << rms << ", reflectance " << rms_r;
         progress(msg.str());
-        if (rms < best) {
-          best = rms;
+        if (rms_r < best) {
+          best = rms_r;
           degree = d;
+          cv_variance = rms * rms;
         }
       }
     }
@@ -405,7 +435,7 @@ SmoothFitResult FitSmooth(const Dataset& dataset, const SmoothFitOptions& option
   auto coeffs = options.start ? StartFromModel(*options.start, g, basis, nb)
                               : StartFromInversion(g, AllSamples(g), basis, nb);
   const SolveStats stats =
-      SolveAny(nb, g, AllSamples(g), basis, options, options.covariance, &coeffs);
+      SolveAny(nb, g, AllSamples(g), basis, options, options.covariance, cv_variance, &coeffs);
 
   nlohmann::json fit;
   fit["method"] = "ceres levenberg-marquardt, sparse normal cholesky";
@@ -429,13 +459,20 @@ SmoothFitResult FitSmooth(const Dataset& dataset, const SmoothFitOptions& option
   fit["rms_per_sample"] = per_sample;
   nlohmann::json cv = nlohmann::json::array();
   for (const auto& row : result.cross_validation) {
-    cv.push_back({{"degree", row.degree}, {"rms_relative_eps", row.rms}});
+    cv.push_back({{"degree", row.degree},
+                  {"rms_relative_eps", row.rms},
+                  {"rms_reflectance", row.rms_reflectance}});
   }
   fit["cross_validation"] = cv;
-  fit["covariance"] = stats.covariance.empty()
-                          ? "none"
-                          : "ceres::Covariance per wavelength node, scaled by the data "
-                            "residual variance";
+  if (stats.covariance.empty()) {
+    fit["covariance"] = "none";
+  } else {
+    fit["covariance"] =
+        "ceres::Covariance per wavelength node, scaled by the larger of the data residual "
+        "variance and the leave-one-out variance at the chosen degree";
+    fit["residual_variance"] = stats.residual_variance;
+    fit["cross_validation_variance"] = cv_variance;
+  }
 
   result.model = std::make_unique<SmoothModel>(dataset, grid, degree, std::move(coeffs),
                                                stats.covariance);

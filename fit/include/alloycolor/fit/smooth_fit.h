@@ -11,8 +11,12 @@
 //    samples stay determined.
 // The start is the least-squares fit of the pointwise inversion (eq. 11, 12) in
 // (ln gamma, ln wp^2); Ceres refines it on eps. D is chosen by leave-one-composition-out
-// cross-validation unless fixed. Covariance: ceres::Covariance on each node's block,
-// scaled by the data residual variance.
+// cross-validation over the interior samples unless fixed, scored by the left-out
+// samples' normal-incidence reflectance error (what colour depends on) (a fold is fitted with degree
+// D - 1, so it keeps the final fit's degrees of freedom). Covariance: ceres::Covariance on
+// each node's block, scaled by the larger of the data residual variance and the
+// cross-validated variance (an interpolating fit has no residual to scale by, but it
+// still errs between samples).
 #ifndef ALLOYCOLOR_FIT_SMOOTH_FIT_H_
 #define ALLOYCOLOR_FIT_SMOOTH_FIT_H_
 
@@ -33,7 +37,7 @@ using ProgressCallback = std::function<void(const std::string& message)>;
 struct SmoothFitOptions {
   std::vector<double> grid_nm;     // empty: DefaultGrid(dataset)
   int degree = -1;                 // < 0: chosen by leave-one-out cross-validation
-  int max_degree = 4;              // largest degree cross-validation tries
+  int max_degree = 6;              // largest degree cross-validation tries
   double smoothing = 1e-3;         // mu
   double ridge = 1e-8;             // rho
   int max_iterations = 100;
@@ -44,7 +48,8 @@ struct SmoothFitOptions {
 
 struct CrossValidationRow {
   int degree;
-  double rms;  // RMS relative eps error on the left-out samples
+  double rms;              // RMS relative eps error on the left-out samples
+  double rms_reflectance;  // RMS normal-incidence reflectance error there (the score)
 };
 
 struct SmoothFitResult {

@@ -18,8 +18,8 @@ namespace alloycolor {
 namespace {
 
 namespace fs = std::filesystem;
-using ::testing::HasSubstr;
 using testing::DataDir;
+using ::testing::HasSubstr;
 using testing::MakeTempDir;
 using testing::WriteText;
 
@@ -139,11 +139,13 @@ class ManifestTest : public ::testing::Test {
   std::string dir_ = MakeTempDir();
 };
 
-constexpr char kHead[] = R"({"system": {"a": "Au", "b": "Ag"}, "composition": "atomic_fraction_a", )";
+constexpr char kHead[] =
+    R"({"system": {"a": "Au", "b": "Ag"}, "composition": "atomic_fraction_a", )";
 
 TEST_F(ManifestTest, RelativeAndAbsoluteFilesAndUnknownKeys) {
   const std::string path = Manifest(std::string(kHead) + R"("samples": [
-    {"x": 0.7, "file": "a.yml"}, {"x": 0.2, "file": ")" + dir_ + R"(/b.yml", "note": 1}],
+    {"x": 0.7, "file": "a.yml"}, {"x": 0.2, "file": ")" +
+                                        dir_ + R"(/b.yml", "note": 1}],
     "colour": "green"})",
                                     "mine.json");
   const Dataset dataset = LoadDataset(path);
@@ -164,18 +166,17 @@ TEST_F(ManifestTest, ErrorsNameTheManifestAndTheField) {
   const std::string one_sample = R"("samples": [{"x": 0.5, "file": "a.yml"}]})";
   const std::vector<Case> cases = {
       {"", ":1: invalid JSON"},
-      {"{\"system\": {\"a\": \"Au\",\n \"b\": \"Ag\"},\n \"composition\": ,\n}", ":3: invalid JSON"},
+      {"{\"system\": {\"a\": \"Au\",\n \"b\": \"Ag\"},\n \"composition\": ,\n}",
+       ":3: invalid JSON"},
       {"[1, 2]", ": the manifest is not a JSON object"},
       {R"({"composition": "atomic_fraction_a", )" + one_sample, ": system: missing"},
-      {R"({"system": {"a": "Xx", "b": "Ag"}, "composition": "atomic_fraction_a", )" +
-           one_sample,
+      {R"({"system": {"a": "Xx", "b": "Ag"}, "composition": "atomic_fraction_a", )" + one_sample,
        ": system.a: unknown element 'Xx'"},
       {R"({"system": {"a": "Au"}, "composition": "atomic_fraction_a", )" + one_sample,
        ": system.b: missing"},
       {R"({"system": {"a": "Au", "b": 3}, "composition": "atomic_fraction_a", )" + one_sample,
        ": system.b: not a string"},
-      {R"({"system": {"a": "Au", "b": "Au"}, "composition": "atomic_fraction_a", )" +
-           one_sample,
+      {R"({"system": {"a": "Au", "b": "Au"}, "composition": "atomic_fraction_a", )" + one_sample,
        ": system: a and b are both 'Au'"},
       {R"({"system": {"a": "Au", "b": "Ag"}, )" + one_sample, ": composition: missing"},
       {R"({"system": {"a": "Au", "b": "Ag"}, "composition": "percent", )" + one_sample,
@@ -192,7 +193,8 @@ TEST_F(ManifestTest, ErrorsNameTheManifestAndTheField) {
        ": samples[0] ('a.yml'): x: missing or not a number"},
       {std::string(kHead) + R"("samples": [{"x": "0.5", "file": "a.yml"}]})",
        ": samples[0] ('a.yml'): x: missing or not a number"},
-      {std::string(kHead) + R"("samples": [{"x": 0.1, "file": "b.yml"}, {"x": 1.5, "file": "a.yml"}]})",
+      {std::string(kHead) +
+           R"("samples": [{"x": 0.1, "file": "b.yml"}, {"x": 1.5, "file": "a.yml"}]})",
        ": samples[1] ('a.yml'): x = 1.5 lies outside [0, 1]"},
       {std::string(kHead) + R"("samples": [{"x": -0.5, "file": "a.yml"}]})",
        ": samples[0] ('a.yml'): x = -0.5 lies outside [0, 1]"},
@@ -200,7 +202,8 @@ TEST_F(ManifestTest, ErrorsNameTheManifestAndTheField) {
        ": samples[0] ('dataset.json'): the sample file is the manifest itself"},
       {std::string(kHead) + R"("samples": [{"x": 0.5, "file": "./dataset.json"}]})",
        ": samples[0] ('./dataset.json'): the sample file is the manifest itself"},
-      {std::string(kHead) + R"("samples": [{"x": 0.5, "file": "a.yml"}, {"x": 0.5, "file": "b.yml"}]})",
+      {std::string(kHead) +
+           R"("samples": [{"x": 0.5, "file": "a.yml"}, {"x": 0.5, "file": "b.yml"}]})",
        ": samples 'a.yml' and 'b.yml' have the same composition, x = 0.5"},
   };
   for (const Case& c : cases) {
@@ -220,13 +223,15 @@ TEST_F(ManifestTest, SameCompositionAfterWeightConversion) {
 TEST_F(ManifestTest, SampleErrorsNameTheSampleFile) {
   Manifest(std::string(kHead) + R"("samples": [{"x": 0.5, "file": "missing.yml"}]})");
   EXPECT_THAT(ErrorOf(dir_), HasSubstr("cannot read '" + dir_ + "/missing.yml'"));
-  Manifest(std::string(kHead) + R"("samples": [{"x": 0.5, "file": "a.yml"}, {"x": 0.6, "file": "bad.yml"}]})");
+  Manifest(std::string(kHead) +
+           R"("samples": [{"x": 0.5, "file": "a.yml"}, {"x": 0.6, "file": "bad.yml"}]})");
   EXPECT_THAT(ErrorOf(dir_), HasSubstr(dir_ + "/bad.yml:5: cannot parse number 'oops'"));
 }
 
 TEST_F(ManifestTest, MissingManifestOrFolder) {
   EXPECT_THAT(ErrorOf(dir_), HasSubstr("cannot read '" + dir_ + "/dataset.json'"));
-  EXPECT_THAT(ErrorOf(dir_ + "/nothing.json"), HasSubstr("cannot read '" + dir_ + "/nothing.json'"));
+  EXPECT_THAT(ErrorOf(dir_ + "/nothing.json"),
+              HasSubstr("cannot read '" + dir_ + "/nothing.json'"));
 }
 
 }  // namespace

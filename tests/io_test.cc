@@ -21,10 +21,10 @@ namespace alloycolor {
 namespace {
 
 namespace fs = std::filesystem;
-using ::testing::HasSubstr;
-using ::testing::Not;
 using testing::DataDir;
+using ::testing::HasSubstr;
 using testing::MakeTempDir;
+using ::testing::Not;
 using testing::WriteText;
 
 // The message of the Error thrown by f, or "" (and a test failure) when none is thrown.
@@ -204,10 +204,9 @@ TEST_F(YamlTest, TabulatedKCoveringPartOfNUsesTheOverlapWithWarning) {
 }
 
 TEST_F(YamlTest, LineNumbersCountBlankLinesInTheBlock) {
-  const std::string path = Write(
-      "blank.yml", std::string(kYamlHead) + "\n        0.5 1 2\n\n        0.6 x 2\n");
-  EXPECT_THAT(ErrorOf([&] { ReadNkFile(path); }),
-              HasSubstr(path + ":9: cannot parse number 'x'"));
+  const std::string path =
+      Write("blank.yml", std::string(kYamlHead) + "\n        0.5 1 2\n\n        0.6 x 2\n");
+  EXPECT_THAT(ErrorOf([&] { ReadNkFile(path); }), HasSubstr(path + ":9: cannot parse number 'x'"));
 }
 
 TEST_F(YamlTest, RowsOutsideALiteralBlockAreNamedByNumber) {
@@ -238,15 +237,20 @@ INSTANTIATE_TEST_SUITE_P(
     Rows, BadYamlTest,
     ::testing::Values(
         BadYaml{"number", "        0.5 1 2\n        0.6 abc 2\n", ":7: cannot parse number 'abc'"},
-        BadYaml{"trailing", "        0.5 1 2\n        0.6 1.5x 2\n", ":7: cannot parse number '1.5x'"},
+        BadYaml{"trailing", "        0.5 1 2\n        0.6 1.5x 2\n",
+                ":7: cannot parse number '1.5x'"},
         BadYaml{"columns", "        0.5 1 2\n        0.6 1\n", ":7: expected 3 columns"},
         BadYaml{"extra", "        0.5 1 2 4\n        0.6 1 2\n", ":6: expected 3 columns"},
-        BadYaml{"nan", "        0.5 1 2\n        0.6 nan 2\n", ":7: n is 'nan', not a finite number"},
-        BadYaml{"inf", "        0.5 1 inf\n        0.6 1 2\n", ":6: k is 'inf', not a finite number"},
+        BadYaml{"nan", "        0.5 1 2\n        0.6 nan 2\n",
+                ":7: n is 'nan', not a finite number"},
+        BadYaml{"inf", "        0.5 1 inf\n        0.6 1 2\n",
+                ":6: k is 'inf', not a finite number"},
         BadYaml{"one_row", "        0.5 1 2\n", ":5: only 1 distinct wavelength"},
-        BadYaml{"one_repeated", "        0.5 1 2\n        0.5 1 2\n", ":5: only 1 distinct wavelength"},
+        BadYaml{"one_repeated", "        0.5 1 2\n        0.5 1 2\n",
+                ":5: only 1 distinct wavelength"},
         BadYaml{"no_rows", "\n", ":5: no data rows"},
-        BadYaml{"zero_lambda", "        0 1 2\n        0.6 1 2\n", ":6: wavelength_um = 0 is not positive"},
+        BadYaml{"zero_lambda", "        0 1 2\n        0.6 1 2\n",
+                ":6: wavelength_um = 0 is not positive"},
         BadYaml{"negative_lambda", "        0.5 1 2\n        -0.6 1 2\n",
                 ":7: wavelength_um = -0.6 is not positive"},
         BadYaml{"decreasing", "        0.5 1 2\n        0.6 1 2\n        0.55 1 2\n",

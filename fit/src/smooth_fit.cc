@@ -1,5 +1,7 @@
 #include "alloycolor/fit/smooth_fit.h"
 
+#include "alloycolor/fit/smooth_costs.h"
+
 #include <ceres/ceres.h>
 
 #include <Eigen/Dense>
@@ -13,64 +15,6 @@
 
 namespace alloycolor::fit {
 namespace {
-
-// Relative misfit of the model's eps at one sample and node (see smooth_fit.h).
-template <int kNb>
-struct EpsResidual {
-  EpsResidual(const double* basis, double omega_ev, std::complex<double> eps)
-      : omega_ev(omega_ev), eps1(eps.real()), eps2(eps.imag()), inv_abs(1.0 / std::abs(eps)) {
-    std::copy(basis, basis + kNb, this->basis);
-  }
-  template <typename T>
-  bool operator()(const T* const coeffs, T* residual) const {
-    const Complex<T> e = SmoothNodePermittivity(coeffs, basis, kNb, omega_ev);
-    residual[0] = (e.re - T(eps1)) * T(inv_abs);
-    residual[1] = (e.im - T(eps2)) * T(inv_abs);
-    return true;
-  }
-  static ceres::CostFunction* Create(const double* basis, double omega_ev,
-                                     std::complex<double> eps) {
-    return new ceres::AutoDiffCostFunction<EpsResidual, 2, 2 * kNb>(
-        new EpsResidual(basis, omega_ev, eps));
-  }
-  double basis[kNb];
-  const double omega_ev, eps1, eps2, inv_abs;
-};
-
-// Second difference of every coefficient across three neighbouring nodes.
-template <int kNb>
-struct CurvatureResidual {
-  explicit CurvatureResidual(double weight) : weight(weight) {}
-  template <typename T>
-  bool operator()(const T* const a, const T* const b, const T* const c, T* residual) const {
-    for (int d = 0; d < 2 * kNb; ++d) residual[d] = T(weight) * (a[d] - T(2) * b[d] + c[d]);
-    return true;
-  }
-  static ceres::CostFunction* Create(double weight) {
-    return new ceres::AutoDiffCostFunction<CurvatureResidual, 2 * kNb, 2 * kNb, 2 * kNb,
-                                           2 * kNb>(new CurvatureResidual(weight));
-  }
-  const double weight;
-};
-
-// Pulls the composition-dependent coefficients (d >= 1) weakly toward zero.
-template <int kNb>
-struct RidgeResidual {
-  explicit RidgeResidual(double weight) : weight(weight) {}
-  template <typename T>
-  bool operator()(const T* const c, T* residual) const {
-    for (int d = 1; d < kNb; ++d) {
-      residual[2 * (d - 1)] = T(weight) * c[d];
-      residual[2 * (d - 1) + 1] = T(weight) * c[kNb + d];
-    }
-    return true;
-  }
-  static ceres::CostFunction* Create(double weight) {
-    return new ceres::AutoDiffCostFunction<RidgeResidual, 2 * (kNb - 1), 2 * kNb>(
-        new RidgeResidual(weight));
-  }
-  const double weight;
-};
 
 // The data on the grid: eps of every sample at every node, and whether it is usable.
 struct GridData {
@@ -260,10 +204,10 @@ SolveStats Solve(const GridData& g, const std::vector<char>& in, const Basis& ba
     }
   }
   ceres::Solver::Options solver_options;
+  // Eigen's sparse Cholesky: no threaded BLAS underneath, so the result is the same to
+  // the last bit on every run (SuiteSparse through OpenBLAS is not).
   solver_options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
-  if (!ceres::IsSparseLinearAlgebraLibraryTypeAvailable(ceres::SUITE_SPARSE)) {
-    solver_options.sparse_linear_algebra_library_type = ceres::EIGEN_SPARSE;
-  }
+  solver_options.sparse_linear_algebra_library_type = ceres::EIGEN_SPARSE;
   solver_options.max_num_iterations = options.max_iterations;
   solver_options.function_tolerance = 1e-12;
   solver_options.gradient_tolerance = 1e-14;
@@ -291,6 +235,7 @@ SolveStats Solve(const GridData& g, const std::vector<char>& in, const Basis& ba
   if (want_covariance) {
     ceres::Covariance::Options cov_options;
     cov_options.algorithm_type = ceres::SPARSE_QR;
+    cov_options.sparse_linear_algebra_library_type = ceres::EIGEN_SPARSE;
     cov_options.num_threads = 1;
     ceres::Covariance covariance(cov_options);
     std::vector<std::pair<const double*, const double*>> pairs;
@@ -438,7 +383,7 @@ SmoothFitResult FitSmooth(const Dataset& dataset, const SmoothFitOptions& option
       SolveAny(nb, g, AllSamples(g), basis, options, options.covariance, cv_variance, &coeffs);
 
   nlohmann::json fit;
-  fit["method"] = "ceres levenberg-marquardt, sparse normal cholesky";
+  fit["method"] = "ceres levenberg-marquardt, sparse normal cholesky (eigen)";
   fit["degree"] = degree;
   fit["degree_chosen_by"] = options.degree < 0 ? "leave-one-out cross-validation" : "user";
   fit["smoothing"] = options.smoothing;

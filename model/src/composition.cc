@@ -13,11 +13,11 @@
 namespace alloycolor {
 namespace {
 
-// Elements the library knows. Only elements with a sourced value in every column:
+// The elements the library knows: only those with a sourced value in every column.
 //  - atomic_mass: IUPAC standard atomic weights (CIAAW, 2021 table; for Mg and Pb, whose
 //    standard weight is an interval, the IUPAC abridged/conventional value).
-//  - density_g_cm3: CRC Handbook of Chemistry and Physics, "Physical Constants of
-//    Inorganic Compounds" / "Density of the Elements", at room temperature (Sn: white tin).
+//  - density_g_cm3: CRC Handbook of Chemistry and Physics, section 4 ("Physical Constants
+//    of Inorganic Compounds"), at room temperature; Sn is white (beta) tin.
 //  - valence: free electrons per atom Z as listed by Ashcroft & Mermin, Solid State
 //    Physics (1976), Table 1.1 ("Free electron densities of selected elements"). For Nb
 //    it gives Z = 1, the value commonly taken for Drude fits (one s-like conduction
@@ -25,20 +25,23 @@ namespace {
 //    electrons), and we follow it. Transition metals such as Ni, Pd, Pt, Cr, Ti, Co, Rh,
 //    Ir, Ta, W, Mo and V have no free-electron valence in that table, so they are left
 //    out rather than given an invented one.
+// clang-format off
 constexpr Element kElements[] = {
-    {"Ag", 107.8682, 10.5, 1},     //
-    {"Al", 26.9815384, 2.70, 3},   //
-    {"Au", 196.966570, 19.3, 1},   //
-    {"Cu", 63.546, 8.96, 1},       //
-    {"Fe", 55.845, 7.874, 2},      //
-    {"Ga", 69.723, 5.91, 3},       //
-    {"In", 114.818, 7.31, 3},      //
-    {"Mg", 24.305, 1.74, 2},       //
-    {"Nb", 92.90637, 8.57, 1},     //
-    {"Pb", 207.2, 11.3, 4},        //
-    {"Sn", 118.710, 7.287, 4},     //
-    {"Zn", 65.38, 7.134, 2},       //
+    // symbol, g/mol,    g/cm^3, Z
+    {"Ag", 107.8682,   10.5,   1},
+    {"Al", 26.9815384, 2.70,   3},
+    {"Au", 196.966570, 19.3,   1},
+    {"Cu", 63.546,     8.96,   1},
+    {"Fe", 55.845,     7.874,  2},
+    {"Ga", 69.723,     5.91,   3},
+    {"In", 114.818,    7.31,   3},
+    {"Mg", 24.305,     1.74,   2},
+    {"Nb", 92.90637,   8.57,   1},
+    {"Pb", 207.2,      11.3,   4},
+    {"Sn", 118.710,    7.287,  4},
+    {"Zn", 65.38,      7.134,  2},
 };
+// clang-format on
 
 [[noreturn]] void Fail(std::string message) {
   for (char& c : message) {

@@ -82,8 +82,7 @@ void WarnUnknownKeys(const std::string& manifest, const std::string& where, cons
                      const std::vector<std::string>& known, std::vector<std::string>* warnings) {
   for (auto it = object.begin(); it != object.end(); ++it) {
     if (std::find(known.begin(), known.end(), it.key()) == known.end()) {
-      warnings->push_back(manifest + ": " + where + "unknown key " + Quote(it.key()) +
-                          " ignored");
+      warnings->push_back(manifest + ": " + where + "unknown key " + Quote(it.key()) + " ignored");
     }
   }
 }
@@ -106,7 +105,8 @@ Dataset Load(const std::string& dir_or_manifest) {
   Dataset dataset;
   dataset.manifest_path = manifest;
   if (!root.is_object()) Fail(manifest + ": the manifest is not a JSON object");
-  WarnUnknownKeys(manifest, "", root, {"name", "system", "composition", "samples", "source", "notes"},
+  WarnUnknownKeys(manifest, "", root,
+                  {"name", "system", "composition", "samples", "source", "notes"},
                   &dataset.warnings);
 
   if (!root.contains("system") || !root.at("system").is_object()) {
@@ -138,8 +138,7 @@ Dataset Load(const std::string& dir_or_manifest) {
   dataset.composition = composition.get<std::string>();
   const bool by_weight = dataset.composition == kWeight;
 
-  if (!root.contains("samples") || !root.at("samples").is_array() ||
-      root.at("samples").empty()) {
+  if (!root.contains("samples") || !root.at("samples").is_array() || root.at("samples").empty()) {
     Fail(manifest + ": samples: missing or not a non-empty list");
   }
   const fs::path folder = manifest_path.parent_path();
@@ -211,10 +210,9 @@ Dataset WithoutSamples(const Dataset& dataset, const std::vector<double>& exclud
   Dataset result = dataset;
   result.samples.clear();
   for (const Sample& sample : dataset.samples) {
-    const bool excluded =
-        std::any_of(exclude_x.begin(), exclude_x.end(), [&sample](double x) {
-          return std::abs(sample.x_atomic - x) <= kSameComposition;
-        });
+    const bool excluded = std::any_of(exclude_x.begin(), exclude_x.end(), [&sample](double x) {
+      return std::abs(sample.x_atomic - x) <= kSameComposition;
+    });
     if (!excluded) result.samples.push_back(sample);
   }
   return result;

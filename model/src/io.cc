@@ -131,8 +131,8 @@ struct Columns {
   }
 };
 
-Row ParseRow(const std::vector<std::string_view>& fields, const Columns& columns,
-             char separator, const Locator& where, int line, int index) {
+Row ParseRow(const std::vector<std::string_view>& fields, const Columns& columns, char separator,
+             const Locator& where, int line, int index) {
   const std::string at = where.Row(line, index);
   if (fields.size() != columns.names.size()) {
     Fail(at + "expected " + std::to_string(columns.names.size()) + " columns (" +
@@ -186,8 +186,7 @@ Table FinishRows(const std::vector<Row>& rows, const Columns& columns, const Loc
       table.values[0].back() += row.values[0];
       table.values[1].back() += row.values[1];
       ++counts.back();
-      if (row.values[0] != firsts.back()->values[0] ||
-          row.values[1] != firsts.back()->values[1]) {
+      if (row.values[0] != firsts.back()->values[0] || row.values[1] != firsts.back()->values[1]) {
         differ.back() = true;
       }
       continue;
@@ -347,8 +346,8 @@ NkSpectrum JoinNK(const std::string& path, const Table& n_table, const Table& k_
     k.push_back(Interpolate(k_table.lambda, k_table.values[0], x));
   }
   const std::string ranges = "tabulated n covers " + Number(n_table.lambda.front()) + " to " +
-                             Number(n_table.lambda.back()) + " um, tabulated k " +
-                             Number(k_lo) + " to " + Number(k_hi) + " um";
+                             Number(n_table.lambda.back()) + " um, tabulated k " + Number(k_lo) +
+                             " to " + Number(k_hi) + " um";
   if (lambda.size() < 2) {
     Fail(path + ": " + ranges + "; they share fewer than two wavelengths of the n grid");
   }
@@ -409,10 +408,10 @@ NkSpectrum ParseYaml(const std::string& path, const std::string& text,
                         "wavelength_um");
   }
   if (nk == 0 && n == 1 && k == 1) {
-    const Table n_table = ReadYamlTable(path, text, find(EntryKind::kN),
-                                        Columns{{"wavelength_um", "n"}}, warnings);
-    const Table k_table = ReadYamlTable(path, text, find(EntryKind::kK),
-                                        Columns{{"wavelength_um", "k"}}, warnings);
+    const Table n_table =
+        ReadYamlTable(path, text, find(EntryKind::kN), Columns{{"wavelength_um", "n"}}, warnings);
+    const Table k_table =
+        ReadYamlTable(path, text, find(EntryKind::kK), Columns{{"wavelength_um", "k"}}, warnings);
     return JoinNK(path, n_table, k_table, warnings);
   }
   std::string held;
@@ -587,7 +586,8 @@ void WriteFileAtomic(const std::string& path, const std::string& contents) {
   if (rename(temp.c_str(), path.c_str()) != 0) fail(errno, false);
   // Make the rename itself durable; a failure here leaves a complete file, so it is ignored.
   const std::string folder = std::filesystem::path(path).parent_path().string();
-  const int dir_fd = open(folder.empty() ? "." : folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  const int dir_fd =
+      open(folder.empty() ? "." : folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
   if (dir_fd >= 0) {
     fsync(dir_fd);
     close(dir_fd);

@@ -16,8 +16,9 @@
 
 namespace alloycolor {
 
-// Chooses the reader from the extension (.yml/.yaml or .csv); warnings, if given,
-// receive one line per oddity that was repaired.
+// Chooses the reader from the extension (.yml/.yaml or .csv; another extension is read
+// as YAML when a line starts with "DATA:"). warnings, if given, receive one line per
+// oddity that was repaired, each beginning "file:line: " (or "file: ").
 NkSpectrum ReadNkFile(const std::string& path, std::vector<std::string>* warnings = nullptr);
 NkSpectrum ReadRefractiveIndexYaml(const std::string& path,
                                    std::vector<std::string>* warnings = nullptr);

@@ -2,6 +2,7 @@
 // alloy at any composition from a data set or a fitted model.
 #include <cstdio>
 #include <iostream>
+#include <sstream>
 
 #include "alloycolor/model/error.h"
 #include "alloycolor/model/io.h"
@@ -43,7 +44,9 @@ void PrintRow(const std::string& label, const render::ColorResult& c, double sig
 void Run(const ColorOptions& o) {
   const render::Colorimeter colorimeter = LoadColorimeter(o.illuminant, o.observer);
   if (!(o.angle_deg >= 0.0 && o.angle_deg <= 90.0)) {
-    throw Error("--angle: " + std::to_string(o.angle_deg) + " lies outside 0-90 degrees");
+    std::ostringstream msg;
+    msg << "--angle: " << o.angle_deg << " lies outside 0-90 degrees";
+    throw Error(msg.str());
   }
   nlohmann::json common = {{"illuminant", colorimeter.illuminant()},
                            {"observer", o.observer},

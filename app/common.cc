@@ -102,7 +102,21 @@ void WriteOutput(const std::string& path, const std::string& contents, bool quie
   if (!quiet) std::cerr << "alloycolor: wrote " << path << "\n";
 }
 
-void Warn(const std::string& message) { std::cerr << "alloycolor: warning: " << message << "\n"; }
+namespace {
+std::vector<std::string>& PendingWarnings() {
+  static std::vector<std::string> pending;
+  return pending;
+}
+}  // namespace
+
+void Warn(const std::string& message) { PendingWarnings().push_back(message); }
+
+void FlushWarnings() {
+  for (const std::string& w : PendingWarnings()) {
+    std::cerr << "alloycolor: warning: " << w << "\n";
+  }
+  PendingWarnings().clear();
+}
 
 void ModelSource::AddOptions(CLI::App* cmd, bool with_data) {
   cmd->add_option("--model", model_path, "Fitted model file (JSON, from 'alloycolor fit')");

@@ -38,8 +38,10 @@ std::unique_ptr<AlloyModel> BuildModel(const std::string& method, const Dataset&
 // Writes a file atomically and says so on stderr unless quiet.
 void WriteOutput(const std::string& path, const std::string& contents, bool quiet);
 
-// One warning line on stderr ("alloycolor: warning: ...").
+// Queues a warning ("alloycolor: warning: ..."); FlushWarnings prints them once the
+// command has succeeded, so a failed run prints its one error line only.
 void Warn(const std::string& message);
+void FlushWarnings();
 
 // Options common to commands that take a composition source: --model, --data + --method.
 struct ModelSource {
@@ -59,6 +61,10 @@ void CheckComposition(const AlloyModel& model, double x_atomic, bool extrapolate
 void RegisterColor(CLI::App& app);
 void RegisterFit(CLI::App& app);
 void RegisterPredict(CLI::App& app);
+void RegisterRender(CLI::App& app);
+void RegisterExport(CLI::App& app);
+void RegisterValidate(CLI::App& app);
+void RegisterChart(CLI::App& app);
 
 }  // namespace alloycolor::app
 

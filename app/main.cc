@@ -22,6 +22,10 @@ int main(int argc, char** argv) {
   alloycolor::app::RegisterColor(app);
   alloycolor::app::RegisterFit(app);
   alloycolor::app::RegisterPredict(app);
+  alloycolor::app::RegisterRender(app);
+  alloycolor::app::RegisterExport(app);
+  alloycolor::app::RegisterValidate(app);
+  alloycolor::app::RegisterChart(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -44,6 +48,7 @@ int main(int argc, char** argv) {
     std::cerr << "alloycolor: internal error: " << e.what() << "\n";
     return 3;
   }
+  alloycolor::app::FlushWarnings();
   std::cout.flush();
   if (!std::cout) {
     std::cerr << "alloycolor: error: cannot write standard output\n";

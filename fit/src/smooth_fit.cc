@@ -176,11 +176,18 @@ SolveStats Solve(const GridData& g, const std::vector<char>& in, const Basis& ba
                  const SmoothFitOptions& options, bool want_covariance, double min_variance,
                  std::vector<std::vector<double>>* coeffs) {
   const size_t nodes = g.grid_nm.size();
+  // All nodes' coefficients in one buffer, in node order: Ceres orders parameter blocks by
+  // address in places (the covariance), and this keeps that order the same on every run.
+  std::vector<double> flat(nodes * 2 * kNb);
+  for (size_t j = 0; j < nodes; ++j) {
+    std::copy((*coeffs)[j].begin(), (*coeffs)[j].end(), flat.begin() + j * 2 * kNb);
+  }
+  auto node = [&](size_t j) { return flat.data() + j * 2 * kNb; };
   ceres::Problem::Options problem_options;
   ceres::Problem problem(problem_options);
   std::vector<ceres::ResidualBlockId> data_blocks;
   for (size_t j = 0; j < nodes; ++j) {
-    double* block = (*coeffs)[j].data();
+    double* block = node(j);
     problem.AddParameterBlock(block, 2 * kNb);
     for (size_t i = 0; i < g.x.size(); ++i) {
       if (!in[i] || !g.usable[i][j]) continue;
@@ -199,8 +206,7 @@ SolveStats Solve(const GridData& g, const std::vector<char>& in, const Basis& ba
   if (options.smoothing > 0) {
     for (size_t j = 1; j + 1 < nodes; ++j) {
       problem.AddResidualBlock(CurvatureResidual<kNb>::Create(std::sqrt(options.smoothing)),
-                               nullptr, (*coeffs)[j - 1].data(), (*coeffs)[j].data(),
-                               (*coeffs)[j + 1].data());
+                               nullptr, node(j - 1), node(j), node(j + 1));
     }
   }
   ceres::Solver::Options solver_options;
@@ -219,6 +225,9 @@ SolveStats Solve(const GridData& g, const std::vector<char>& in, const Basis& ba
   if (summary.termination_type == ceres::FAILURE ||
       summary.termination_type == ceres::USER_FAILURE) {
     throw Error("smooth fit failed: " + summary.message);
+  }
+  for (size_t j = 0; j < nodes; ++j) {
+    std::copy(node(j), node(j) + 2 * kNb, (*coeffs)[j].begin());
   }
   SolveStats stats;
   stats.final_cost = summary.final_cost;
@@ -239,7 +248,7 @@ SolveStats Solve(const GridData& g, const std::vector<char>& in, const Basis& ba
     cov_options.num_threads = 1;
     ceres::Covariance covariance(cov_options);
     std::vector<std::pair<const double*, const double*>> pairs;
-    for (size_t j = 0; j < nodes; ++j) pairs.emplace_back((*coeffs)[j].data(), (*coeffs)[j].data());
+    for (size_t j = 0; j < nodes; ++j) pairs.emplace_back(node(j), node(j));
     if (covariance.Compute(pairs, &problem)) {
       const double params = static_cast<double>(nodes * 2 * kNb);
       const double dof = std::max(static_cast<double>(stats.data_residuals) - params, 1.0);
@@ -249,7 +258,7 @@ SolveStats Solve(const GridData& g, const std::vector<char>& in, const Basis& ba
       stats.covariance.resize(nodes);
       for (size_t j = 0; j < nodes; ++j) {
         std::vector<double> block(4 * kNb * kNb);
-        covariance.GetCovarianceBlock((*coeffs)[j].data(), (*coeffs)[j].data(), block.data());
+        covariance.GetCovarianceBlock(node(j), node(j), block.data());
         for (double& v : block) v *= variance;
         stats.covariance[j] = std::move(block);
       }

@@ -24,13 +24,18 @@ SmoothModel::SmoothModel(const Dataset& dataset, std::vector<double> grid_nm, in
 SmoothModel::SmoothModel(const nlohmann::json& doc, const std::string& source) {
   ReadCommon(doc);
   const auto& p = doc.at("parameters");
+  const char* field = "";
   try {
-    degree_ = p.at("degree").get<int>();
-    grid_nm_ = p.at("lambda_nm").get<std::vector<double>>();
-    coeffs_ = p.at("coefficients").get<std::vector<std::vector<double>>>();
-    covariance_ = p.value("covariance", std::vector<std::vector<double>>{});
+    field = "degree";
+    degree_ = p.at(field).get<int>();
+    field = "lambda_nm";
+    grid_nm_ = p.at(field).get<std::vector<double>>();
+    field = "coefficients";
+    coeffs_ = p.at(field).get<std::vector<std::vector<double>>>();
+    field = "covariance";
+    covariance_ = p.value(field, std::vector<std::vector<double>>{});
   } catch (const nlohmann::json::exception& e) {
-    throw Error(source + ": parameters: " + e.what());
+    throw Error(source + ": parameters." + field + ": " + e.what());
   }
   Validate(source);
 }

@@ -1,0 +1,238 @@
+// alloycolor validate: refit every method without held-out samples, predict them and write
+// a validation report (report.json and a self-contained report.html); see report.h.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+
+#include "alloycolor/model/error.h"
+#include "alloycolor/model/io.h"
+#include "common.h"
+#include "report.h"
+
+namespace alloycolor::app {
+namespace {
+
+struct ValidateOptions {
+  std::string data_dir;
+  std::string holdout_text;
+  bool loo = false;
+  std::string methods = "paper,eps-linear,smooth";
+  std::string angles = "0,45";
+  std::string illuminant = "D65";
+  int observer = 2;
+  std::string out;
+  bool quiet = false;
+};
+
+std::vector<std::string> SplitList(const std::string& text) {
+  std::vector<std::string> parts;
+  std::stringstream in(text);
+  std::string part;
+  while (std::getline(in, part, ',')) {
+    const size_t b = part.find_first_not_of(" \t");
+    const size_t e = part.find_last_not_of(" \t");
+    parts.push_back(b == std::string::npos ? "" : part.substr(b, e - b + 1));
+  }
+  if (!text.empty() && text.back() == ',') parts.push_back("");
+  return parts;
+}
+
+std::string Format(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", x);
+  return buf;
+}
+
+std::string SampleList(const Dataset& dataset) {
+  std::string s;
+  for (const Sample& sample : dataset.samples) {
+    s += (s.empty() ? "" : ", ") + Format(sample.x_given);
+  }
+  return s;
+}
+
+// The held-out compositions of --holdout as atomic fractions of samples of the data set. A
+// plain number is matched to the samples' atomic fractions, or failing that to the numbers
+// the manifest gives (weight fractions in a weight-fraction manifest).
+std::vector<double> ParseHoldouts(const std::string& text, const Dataset& dataset) {
+  std::vector<double> xs;
+  for (const std::string& part : SplitList(text)) {
+    if (part.empty()) throw Error("--holdout: empty composition in '" + text + "'");
+    const double x = ParseComposition(part, dataset.system);
+    const Sample* match = nullptr;
+    for (const Sample& s : dataset.samples) {
+      if (std::abs(s.x_atomic - x) <= 1e-9) match = &s;
+    }
+    if (!match) {
+      for (const Sample& s : dataset.samples) {
+        if (std::abs(s.x_given - x) <= 1e-9) match = &s;
+      }
+    }
+    if (!match) {
+      throw Error("--holdout: no sample at " + part + " in " + dataset.manifest_path +
+                  " (samples at " + SampleList(dataset) + ")");
+    }
+    if (match == &dataset.samples.front() || match == &dataset.samples.back()) {
+      throw Error("--holdout: " + part + " is an end sample (" + match->file +
+                  "); every method would have to extrapolate to predict it, so it is kept "
+                  "for training: hold out interior samples only");
+    }
+    bool seen = false;
+    for (double y : xs) seen |= std::abs(y - match->x_atomic) <= 1e-9;
+    if (!seen) xs.push_back(match->x_atomic);
+  }
+  if (xs.empty()) throw Error("--holdout: no composition given");
+  return xs;
+}
+
+std::vector<std::vector<double>> Splits(const ValidateOptions& o, const Dataset& dataset) {
+  if (o.loo && !o.holdout_text.empty()) throw Error("give --holdout or --loo, not both");
+  if (dataset.samples.size() < 3) {
+    throw Error(dataset.manifest_path + " has " + std::to_string(dataset.samples.size()) +
+                " samples; validation needs at least one interior sample besides the two "
+                "ends");
+  }
+  if (!o.holdout_text.empty()) return {ParseHoldouts(o.holdout_text, dataset)};
+  std::vector<std::vector<double>> splits;
+  for (size_t i = 1; i + 1 < dataset.samples.size(); ++i) {
+    splits.push_back({dataset.samples[i].x_atomic});
+  }
+  return splits;
+}
+
+std::vector<std::string> ParseMethods(const std::string& text) {
+  std::vector<std::string> methods;
+  for (const std::string& m : SplitList(text)) {
+    if (m.empty()) throw Error("--methods: empty method name in '" + text + "'");
+    if (std::find(methods.begin(), methods.end(), m) == methods.end()) methods.push_back(m);
+  }
+  if (methods.empty()) throw Error("--methods: no method given");
+  return methods;
+}
+
+// Creates the report folder and checks that files can be written there, before the work.
+void PrepareOutput(const std::string& dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec)) {
+    throw Error("--out " + dir + " exists and is not a folder");
+  }
+  fs::create_directories(dir, ec);
+  if (ec) throw Error("--out: cannot create folder '" + dir + "': " + ec.message());
+  const std::string probe = (fs::path(dir) / ".alloycolor-write-check").string();
+  WriteFileAtomic(probe, "");
+  fs::remove(probe, ec);
+}
+
+void PrintSummary(const nlohmann::json& report) {
+  const auto& methods = report["methods"];
+  std::printf("%-18s", "metric (mean)");
+  for (const auto& m : methods) std::printf(" %16s", m.get<std::string>().c_str());
+  std::printf("\n");
+  // delta_e00 per angle first, then the spectral metrics.
+  std::vector<std::string> keys;
+  for (const auto& [metric, row] : report["summary"].items()) {
+    if (metric.rfind("delta_e00", 0) == 0) keys.push_back(metric);
+  }
+  for (const char* k : {"reflectance_rms", "reflectance_max", "n_max_abs", "k_max_abs"}) {
+    if (report["summary"].contains(k)) keys.push_back(k);
+  }
+  for (const std::string& metric : keys) {
+    const auto& row = report["summary"][metric];
+    std::printf("%-18s", metric.c_str());
+    for (const auto& m : methods) {
+      const auto& cell = row[m.get<std::string>()];
+      char buf[48];
+      if (cell["mean"].is_null()) {
+        std::snprintf(buf, sizeof buf, "-");
+      } else {
+        std::snprintf(buf, sizeof buf, "%.4g (%d/%d)", cell["mean"].get<double>(),
+                      cell["wins"].get<int>(), cell["count"].get<int>());
+      }
+      std::printf(" %16s", buf);
+    }
+    std::printf("\n");
+  }
+  if (!report["delta_e00_available"].get<bool>()) {
+    std::printf("delta_e00: %s\n",
+                report["metric_ranges"]["delta_e00"].get<std::string>().c_str());
+  }
+}
+
+void Run(const ValidateOptions& o) {
+  if (o.out.empty()) throw Error("--out: give the report folder");
+  const Dataset dataset = LoadDatasetArg(o.data_dir);
+  if (!o.quiet) {
+    for (const std::string& w : dataset.warnings) Warn(w);
+  }
+  ValidationOptions options;
+  options.methods = ParseMethods(o.methods);
+  options.angles_deg = ParseNumberList(o.angles, "--angles");
+  for (double a : options.angles_deg) {
+    if (!(a >= 0 && a < 90)) throw Error("--angles: " + Format(a) + " lies outside 0-90 degrees");
+  }
+  options.mode = o.holdout_text.empty() ? "loo" : "holdout";
+  const std::vector<std::vector<double>> splits = Splits(o, dataset);
+  const render::Colorimeter colorimeter = LoadColorimeter(o.illuminant, o.observer);
+  PrepareOutput(o.out);
+
+  const auto start = std::chrono::steady_clock::now();
+  ProgressFunction progress;
+  if (!o.quiet) {
+    progress = [start](const std::string& message) {
+      const double s =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      std::fprintf(stderr, "alloycolor: %6.1f s  %s\n", s, message.c_str());
+    };
+  }
+  const ValidationReport report =
+      ComputeValidation(dataset, splits, colorimeter, options, progress);
+  // Both files are rendered before either is written; each is written atomically.
+  const nlohmann::json json = ValidationJson(report);
+  const std::string json_text = json.dump(1) + "\n";
+  const std::string html_text = ValidationHtml(report);
+  namespace fs = std::filesystem;
+  WriteOutput((fs::path(o.out) / "report.json").string(), json_text, o.quiet);
+  WriteOutput((fs::path(o.out) / "report.html").string(), html_text, o.quiet);
+  PrintSummary(json);
+}
+
+}  // namespace
+
+void RegisterValidate(CLI::App& app) {
+  auto o = std::make_shared<ValidateOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "validate",
+      "Validation report on held-out compositions: every method is refitted without the "
+      "held-out samples (the same split for all), predicts them, and is scored by CIEDE2000 "
+      "colour difference at each angle, reflectance RMS and maximum error (380-780 nm, or the "
+      "data's range for infrared sets), max |dn|, |dk|, and its own one-sigma colour "
+      "uncertainty where it has one. Writes OUT/report.json and a self-contained "
+      "OUT/report.html (tables, swatches, inline SVG plots); prints the mean of each metric "
+      "per method (with wins/count).");
+  cmd->add_option("--data", o->data_dir,
+                  "Data set: folder with dataset.json, a manifest, or a bundled set's name")
+      ->required();
+  cmd->add_option("--holdout", o->holdout_text,
+                  "Hold out these interior samples together (comma-separated compositions; "
+                  "the manifest's numbers or 75at%, 75wt%, 18k)");
+  cmd->add_flag("--loo", o->loo,
+                "Leave one out: hold out each interior sample in turn (the default)");
+  cmd->add_option("--methods", o->methods, "Methods to compare, comma-separated")
+      ->capture_default_str();
+  cmd->add_option("--angles", o->angles, "Angles of incidence for colour, degrees")
+      ->capture_default_str();
+  cmd->add_option("--illuminant", o->illuminant, "CIE illuminant: A, C, D50, D65, E, F2, F11")
+      ->capture_default_str();
+  cmd->add_option("--observer", o->observer, "CIE observer: 2 (1931) or 10 (1964)")
+      ->capture_default_str();
+  cmd->add_option("--out", o->out, "Report folder (created if missing)")->required();
+  cmd->add_flag("--quiet", o->quiet, "No progress or warnings on stderr");
+  cmd->callback([o]() { Run(*o); });
+}
+
+}  // namespace alloycolor::app

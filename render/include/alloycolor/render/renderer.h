@@ -1,0 +1,103 @@
+// Pictures of solid objects made of a metal: every pixel's colour comes from the spectral
+// Fresnel reflectance at that pixel's angle of incidence (shading.h), never from an RGB
+// approximation of the metal.
+//
+// Scene: one object in a square tile of size x size pixels, seen by an orthographic camera
+// looking along -z (world: x right, y up, z toward the camera). Pixel (i, j), column i and
+// row j from the top-left corner, covers [i, i + 1) x [j, j + 1); its ray runs through its
+// centre (i + 1/2, j + 1/2). With s = kObjectFraction * size, a pixel position (px, py)
+// maps to the world point (px - size / 2, size / 2 - py) / s, so that the object spans
+// [-1, 1] horizontally.
+//  - sphere: radius 1 at the origin. At world (u, v) with u^2 + v^2 <= 1 the normal is
+//    (u, v, sqrt(1 - u^2 - v^2)) and the angle of incidence theta (between the view
+//    direction, the normal and the mirrored light) has cos theta = sqrt(1 - u^2 - v^2).
+//  - ring: a torus of major radius kRingMajorRadius and tube radius kRingTubeRadius
+//    (outer radius 1) whose axis (0, cos e, sin e) is tilted toward the camera by the
+//    elevation e = kRingElevationDeg, like a ring lying on a table seen from above.
+//
+// Lighting (shading.h):
+//  - uniform: a uniform white environment of the illuminant (E = 1), so each pixel is the
+//    colour of R(theta) at the angle of its centre ray: exactly, whatever the pixel's
+//    coverage (the centre of a sphere is the normal-incidence colour; the rim goes toward
+//    white). With a roughness above 0 it is the rough surface's directional albedo.
+//  - studio: a product-shot environment; reflected light E(r) * R, r the mirror direction,
+//    or the GGX lobe of the roughness (split sum).
+// Pixels on the object's outline or on a jump in depth are sampled 4 x 4 times: alpha is
+// the coverage; in studio light the colour is the mean of the samples. The background is
+// transparent or the studio backdrop (neutral: the illuminant's white scaled, a soft
+// gradient). XYZ become linear sRGB (IEC 61966-2-1, no chromatic adaptation, as the
+// `color` command). Rows are shaded in parallel with std::thread.
+#ifndef ALLOYCOLOR_RENDER_RENDERER_H_
+#define ALLOYCOLOR_RENDER_RENDERER_H_
+
+#include <complex>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "alloycolor/render/colorimetry.h"
+#include "alloycolor/render/image.h"
+#include "alloycolor/render/shading.h"
+
+namespace alloycolor::render {
+
+inline constexpr double kObjectFraction = 0.45;
+inline constexpr double kRingMajorRadius = 0.86;
+inline constexpr double kRingTubeRadius = 0.14;
+inline constexpr double kRingElevationDeg = 35.0;
+inline constexpr int kEdgeSamples = 4;  // per side
+inline constexpr int kMaxTileSize = 4096;
+inline constexpr long long kMaxImagePixels = 4096LL * 4096LL;
+
+enum class Shape { kSphere, kRing };
+// "sphere" or "ring"; throws Error naming the accepted names otherwise.
+Shape ShapeFromName(const std::string& name);
+std::string ShapeName(Shape shape);
+
+enum class Background { kTransparent, kBackdrop };
+// "transparent" or "backdrop".
+Background BackgroundFromName(const std::string& name);
+
+struct RenderOptions {
+  Shape shape = Shape::kSphere;
+  int size = 512;  // tile width and height in pixels, 1 to kMaxTileSize
+  Lighting lighting = Lighting::kStudio;
+  double roughness = 0.0;  // GGX alpha, 0 (mirror) to kMaxRoughness
+  Background background = Background::kBackdrop;
+  int threads = 0;  // 0: one per hardware thread
+};
+
+class Renderer {
+ public:
+  // Checks the options (Error naming the one at fault) and prepares the environment
+  // (for a rough surface in studio light, its prefiltered version).
+  Renderer(const Colorimeter& colorimeter, const RenderOptions& options);
+  ~Renderer();
+  Renderer(Renderer&&) noexcept;
+
+  const RenderOptions& options() const { return options_; }
+
+  // The reflection colour of a material (n + i k on the colorimeter's grid) at the
+  // options' roughness, direct and tabulated.
+  DirectReflection Direct(const std::vector<std::complex<double>>& index) const;
+  ReflectionTable Table(const std::vector<std::complex<double>>& index) const;
+
+  // One tile shaded from the table (fast) or from direct spectral evaluation at every
+  // sample (slow; smooth surfaces only). Throws Error when the roughness differs from the
+  // options'.
+  LinearImage Render(const ReflectionTable& table) const;
+  LinearImage Render(const DirectReflection& direct) const;
+
+ private:
+  template <typename Reflection>
+  LinearImage RenderWith(const Reflection& reflection) const;
+
+  Colorimeter colorimeter_;
+  RenderOptions options_;
+  Environment environment_;
+  std::unique_ptr<PrefilteredEnvironment> prefiltered_;
+};
+
+}  // namespace alloycolor::render
+
+#endif  // ALLOYCOLOR_RENDER_RENDERER_H_

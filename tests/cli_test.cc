@@ -1,0 +1,243 @@
+// The real program end to end: the published brass figure, JSON keys, and every kind of
+// bad input giving one line naming the culprit and exit status 2.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "test_util.h"
+
+namespace alloycolor::testing {
+namespace {
+
+// A bad input: one line on stderr containing every needle, nothing on stdout, status 2.
+void ExpectCleanError(const std::vector<std::string>& args,
+                      const std::vector<std::string>& needles) {
+  const RunResult r = RunProgram(args);
+  std::string cmd;
+  for (const auto& a : args) cmd += a + " ";
+  EXPECT_EQ(r.status, 2) << cmd << "\n" << r.err;
+  EXPECT_EQ(CountLines(r.err), 1) << cmd << "\n" << r.err;
+  EXPECT_TRUE(r.out.empty()) << cmd << "\n" << r.out;
+  for (const auto& needle : needles) {
+    EXPECT_NE(r.err.find(needle), std::string::npos) << cmd << ": '" << needle << "' not in " << r.err;
+  }
+}
+
+nlohmann::json ColorJson(const std::vector<std::string>& args) {
+  std::vector<std::string> full = {"color", "--json", "--quiet"};
+  full.insert(full.end(), args.begin(), args.end());
+  const RunResult r = RunProgram(full);
+  EXPECT_EQ(r.status, 0) << r.err;
+  return nlohmann::json::parse(r.out);
+}
+
+TEST(Cli, QuerryBrassMatchesThePublishedFigure) {
+  // Linear sRGB of Querry's Cu70Zn30 at normal incidence under D65, 2 degrees: (0.910,
+  // 0.778, 0.423), a published figure computed the same way.
+  const nlohmann::json c = ColorJson({"--nk", DataDir() + "/Cu-Zn/Querry-Cu70Zn30.yml"});
+  EXPECT_NEAR(c["linear_srgb"][0].get<double>(), 0.910, 0.005);
+  EXPECT_NEAR(c["linear_srgb"][1].get<double>(), 0.778, 0.005);
+  EXPECT_NEAR(c["linear_srgb"][2].get<double>(), 0.423, 0.005);
+  for (const char* key : {"XYZ", "Lab", "linear_srgb", "srgb8", "paper_rgb"}) {
+    EXPECT_TRUE(c.contains(key)) << key;
+  }
+}
+
+TEST(Cli, PerfectReflectorIsTheIlluminantsWhite) {
+  // n = 0 reflects everything at every angle (R = 1 in eq. 2-4): XYZ is the white point.
+  const std::string dir = MakeTempDir();
+  WriteText(dir + "/mirror.csv", "lambda_nm,n,k\n300,0,4\n900,0,4\n");
+  nlohmann::json c = ColorJson({"--nk", dir + "/mirror.csv"});
+  EXPECT_NEAR(c["XYZ"][0].get<double>(), 0.95047, 1e-3);  // ASTM E308 D65, 2 degrees
+  EXPECT_NEAR(c["XYZ"][1].get<double>(), 1.0, 1e-12);
+  EXPECT_NEAR(c["XYZ"][2].get<double>(), 1.08883, 1e-3);
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(c["linear_srgb"][i].get<double>(), 1.0, 2e-3);
+  EXPECT_NEAR(c["Lab"][0].get<double>(), 100.0, 1e-9);
+  c = ColorJson({"--nk", dir + "/mirror.csv", "--illuminant", "A", "--observer", "10",
+                 "--angle", "60"});
+  EXPECT_NEAR(c["XYZ"][0].get<double>(), 1.11144, 1e-3);  // ASTM E308 A, 10 degrees
+  EXPECT_NEAR(c["XYZ"][2].get<double>(), 0.35200, 1e-3);
+}
+
+TEST(Cli, GrazingIncidenceGoesWhite) {
+  const nlohmann::json c =
+      ColorJson({"--nk", DataDir() + "/Au-Ag/Rioux-Au100Ag0.yml", "--angle", "89.9"});
+  EXPECT_GT(c["XYZ"][1].get<double>(), 0.99);
+}
+
+TEST(Cli, PaperBaselineAtAKnownSampleIsThatSample) {
+  const nlohmann::json direct = ColorJson({"--nk", DataDir() + "/Au-Ag/Rioux-Au50Ag50.yml"});
+  const nlohmann::json paper = ColorJson({"--data", DataDir() + "/Au-Ag", "--x", "0.5"});
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(paper["XYZ"][i].get<double>(), direct["XYZ"][i].get<double>(), 1e-9);
+  }
+  // Karats and weight percent go through the atomic masses: 18k Au-Ag is 62.2 at% Au.
+  const nlohmann::json karat = ColorJson({"--data", "Au-Ag", "--x", "18k"});
+  EXPECT_NEAR(karat["x"].get<double>(), 0.6216, 1e-3);
+}
+
+TEST(Cli, HelpExplainsEveryCommand) {
+  const RunResult r = RunProgram({"--help"});
+  EXPECT_EQ(r.status, 0);
+  for (const char* cmd : {"color", "fit", "predict"}) {
+    EXPECT_NE(r.out.find(cmd), std::string::npos) << cmd;
+    const RunResult sub = RunProgram({cmd, "--help"});
+    EXPECT_EQ(sub.status, 0) << cmd;
+    EXPECT_NE(sub.out.find("--"), std::string::npos) << cmd;
+  }
+}
+
+class BadInput : public ::testing::Test {
+ protected:
+  void SetUp() override { dir_ = MakeTempDir(); }
+  std::string File(const std::string& name, const std::string& text) {
+    WriteText(dir_ + "/" + name, text);
+    return dir_ + "/" + name;
+  }
+  std::string Manifest(const std::string& body) {
+    return File("dataset.json", body);
+  }
+  std::string dir_;
+};
+
+TEST_F(BadInput, OpticalConstantFiles) {
+  ExpectCleanError({"color", "--nk", dir_ + "/missing.yml"}, {"missing.yml"});
+  ExpectCleanError({"color", "--nk", dir_}, {dir_});
+  ExpectCleanError({"color", "--nk", File("word.csv", "lambda_nm,n,k\n400,1,2\n500,abc,2\n")},
+                   {"word.csv", ":3", "abc"});
+  ExpectCleanError({"color", "--nk", File("one.csv", "lambda_nm,n,k\n400,1,2\n")}, {"one.csv"});
+  ExpectCleanError({"color", "--nk", File("order.csv", "lambda_nm,n,k\n500,1,2\n400,1,2\n")},
+                   {"order.csv", ":3"});
+  ExpectCleanError({"color", "--nk", File("negk.csv", "lambda_nm,n,k\n400,1,2\n500,1,-2\n")},
+                   {"negk.csv", ":3"});
+  ExpectCleanError({"color", "--nk", File("nan.csv", "lambda_nm,n,k\n400,1,2\n500,nan,2\n")},
+                   {"nan.csv", ":3"});
+  ExpectCleanError({"color", "--nk", File("header.csv", "wavelength,n\n400,1\n500,1\n")},
+                   {"header.csv"});
+  ExpectCleanError({"color", "--nk", File("bad.yml",
+                                          "DATA:\n  - type: tabulated nk\n    data: |\n"
+                                          "        0.4 1.0 2.0\n        0.5 x 2.0\n")},
+                   {"bad.yml", ":5"});
+  ExpectCleanError({"color", "--nk", File("formula.yml",
+                                          "DATA:\n  - type: formula 2\n"
+                                          "    coefficients: 0 1 2\n")},
+                   {"formula.yml", "formula"});
+  ExpectCleanError({"color", "--nk", File("binary.yml", std::string("\x00\x01\xff\xfe", 4))},
+                   {"binary.yml"});
+  // Infrared data do not cover the visible: no colour, said clearly.
+  ExpectCleanError({"color", "--nk", DataDir() + "/Nb-Sn/Golovashkin-22.yml"},
+                   {"Golovashkin-22.yml", "380"});
+}
+
+TEST_F(BadInput, Manifests) {
+  const std::string au = DataDir() + "/Au-Ag/Rioux-Au100Ag0.yml";
+  const std::string ag = DataDir() + "/Au-Ag/Rioux-Au0Ag100.yml";
+  auto manifest = [&](const std::string& a, const std::string& samples) {
+    return Manifest(R"({"system": {"a": ")" + a +
+                    R"(", "b": "Ag"}, "composition": "atomic_fraction_a", "samples": [)" +
+                    samples + "]}");
+  };
+  ExpectCleanError({"color", "--data", manifest("Xx", R"({"x": 0, "file": ")" + ag + R"("})"),
+                    "--x", "0.5"},
+                   {"dataset.json", "Xx"});
+  ExpectCleanError({"color", "--data",
+                    manifest("Au", R"({"x": 1.5, "file": ")" + au + R"("}, {"x": 0, "file": ")" +
+                                       ag + R"("})"),
+                    "--x", "0.5"},
+                   {"dataset.json", "1.5"});
+  ExpectCleanError({"color", "--data",
+                    manifest("Au", R"({"x": 0.5, "file": ")" + au + R"("}, {"x": 0.5, "file": ")" +
+                                       ag + R"("})"),
+                    "--x", "0.5"},
+                   {"dataset.json", "Rioux-Au100Ag0.yml", "Rioux-Au0Ag100.yml"});
+  ExpectCleanError({"color", "--data",
+                    manifest("Au", R"({"x": 1, "file": "nowhere.yml"}, {"x": 0, "file": ")" + ag +
+                                       R"("})"),
+                    "--x", "0.5"},
+                   {"nowhere.yml"});
+  ExpectCleanError({"color", "--data", File("broken.json", "{\"system\": "), "--x", "0.5"},
+                   {"broken.json"});
+  ExpectCleanError({"color", "--data", dir_ + "/none", "--x", "0.5"}, {"none"});
+}
+
+TEST_F(BadInput, CompositionsAndOptions) {
+  ExpectCleanError({"color", "--data", "Au-Ag", "--x", "1.5"}, {"1.5"});
+  ExpectCleanError({"color", "--data", "Au-Ag", "--x", "banana"}, {"banana"});
+  ExpectCleanError({"color", "--data", "Cu-Zn", "--x", "18k"}, {"18k"});
+  ExpectCleanError({"color", "--data", "Au-Ag", "--x", "0.5", "--illuminant", "D99"}, {"D99"});
+  ExpectCleanError({"color", "--data", "Au-Ag", "--x", "0.5", "--observer", "5"}, {"5"});
+  ExpectCleanError({"color", "--data", "Au-Ag", "--x", "0.5", "--angle", "120"}, {"120"});
+  ExpectCleanError({"color", "--data", "Au-Ag", "--x", "0.5", "--method", "magic"}, {"magic"});
+  ExpectCleanError({"color", "--bogus"}, {"--bogus"});
+  ExpectCleanError({"color"}, {"--model"});
+}
+
+TEST_F(BadInput, ModelFilesAndRefit) {
+  const std::string model = dir_ + "/model.json";
+  RunResult r = RunProgram({"fit", "--data", "Au-Ag", "--exclude", "0.3,0.7", "--degree", "3",
+                            "--out", model, "--quiet"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::ifstream in(model);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ExpectCleanError({"predict", "--model", File("cut.json", text.substr(0, text.size() / 2)),
+                    "--x", "0.5"},
+                   {"cut.json"});
+  nlohmann::json doc = nlohmann::json::parse(text);
+  doc["version"] = 7;
+  ExpectCleanError({"predict", "--model", File("v7.json", doc.dump()), "--x", "0.5"},
+                   {"v7.json", "version"});
+  doc = nlohmann::json::parse(text);
+  doc["parameters"].erase("coefficients");
+  ExpectCleanError({"predict", "--model", File("nocoef.json", doc.dump()), "--x", "0.5"},
+                   {"nocoef.json", "coefficients"});
+  doc = nlohmann::json::parse(text);
+  doc["parameters"]["degree"] = "two";
+  ExpectCleanError({"predict", "--model", File("type.json", doc.dump()), "--x", "0.5"},
+                   {"type.json", "degree"});
+  // Refit: reports the added samples, keeps the old model.
+  r = RunProgram({"fit", "--data", "Au-Ag", "--from", model, "--out", dir_ + "/new.json"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("added sample Rioux-Au30Ag70.yml"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("final cost"), std::string::npos) << r.err;
+  std::ifstream again(model);
+  EXPECT_EQ(std::string((std::istreambuf_iterator<char>(again)), std::istreambuf_iterator<char>()),
+            text);
+  ExpectCleanError({"fit", "--data", "Au-Ag", "--from", model, "--out", model}, {"--from"});
+  // A failing fit leaves the old file byte-identical.
+  ExpectCleanError({"fit", "--data", dir_ + "/none", "--out", model}, {"none"});
+  std::ifstream kept(model);
+  EXPECT_EQ(std::string((std::istreambuf_iterator<char>(kept)), std::istreambuf_iterator<char>()),
+            text);
+  // Compositions outside the training range need --extrapolate.
+  r = RunProgram({"fit", "--data", "Au-Ag", "--exclude", "0,1", "--degree", "2", "--out",
+                  dir_ + "/inner.json", "--quiet"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  ExpectCleanError({"predict", "--model", dir_ + "/inner.json", "--x", "0.95"},
+                   {"0.95", "--extrapolate"});
+  r = RunProgram({"predict", "--model", dir_ + "/inner.json", "--x", "0.95", "--extrapolate"});
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out.substr(0, 14), "lambda_nm,n,k\n");
+}
+
+TEST(Cli, PredictWritesTheModelsIndex) {
+  const std::string dir = MakeTempDir();
+  ASSERT_EQ(RunProgram({"fit", "--data", "Au-Ag", "--method", "paper", "--out",
+                        dir + "/paper.json", "--quiet"}).status, 0);
+  const RunResult r = RunProgram({"predict", "--model", dir + "/paper.json", "--x", "0.5",
+                                  "--from", "400", "--to", "410", "--step", "10"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  // The paper model at a known sample is the sample: Rioux-Au50Ag50.yml rows 0.400, 0.410.
+  ASSERT_EQ(CountLines(r.out), 3);
+  double lambda = 0, n = 0, k = 0;
+  ASSERT_EQ(std::sscanf(r.out.c_str() + r.out.find('\n') + 1, "%lf,%lf,%lf", &lambda, &n, &k), 3);
+  EXPECT_EQ(lambda, 400.0);
+  EXPECT_NEAR(n, 1.07148, 1e-9);
+  EXPECT_NEAR(k, 1.60428, 1e-9);
+}
+
+}  // namespace
+}  // namespace alloycolor::testing

@@ -1,0 +1,345 @@
+// End-to-end tests of `alloycolor validate`, through the real program:
+//  - report.json has the documented shape;
+//  - a held-out CIEDE2000 recomputed here, independently of the report code, from the
+//    measured file and from `alloycolor fit --exclude` + `alloycolor predict` output with
+//    the render colorimetry functions, agrees with report.json to 1e-6 (predict writes 17
+//    significant digits on the 5 nm grid the report evaluates);
+//  - bad --holdout values, an unknown method and an unwritable --out exit with status 2, a
+//    one-line message and no report;
+//  - infrared data (Nb-Sn) give n, k, reflectance metrics and say that colour is not
+//    available;
+//  - report.html is self-contained and renders in headless Chromium (skipped without it).
+#include <gtest/gtest.h>
+#include <png.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "alloycolor/model/io.h"
+#include "alloycolor/render/colorimetry.h"
+#include "alloycolor/render/material_color.h"
+#include "test_util.h"
+
+namespace alloycolor {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::CountLines;
+using testing::DataDir;
+using testing::MakeTempDir;
+using testing::RunProgram;
+using testing::RunResult;
+
+std::string ReadText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// One validation of Au-Ag holding out 0.3 and 0.7 together, shared by the tests below.
+class AuAgHoldout : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new std::string(MakeTempDir());
+    run_ = new RunResult(RunProgram({"validate", "--data", DataDir() + "/Au-Ag", "--holdout",
+                                     "0.3,0.7", "--angles", "0,45", "--out",
+                                     *dir_ + "/report", "--quiet"}));
+    if (run_->status == 0) {
+      report_ = new nlohmann::json(nlohmann::json::parse(ReadText(*dir_ + "/report/report.json")));
+    }
+  }
+  static void TearDownTestSuite() {
+    fs::remove_all(*dir_);
+    delete dir_;
+    delete run_;
+    delete report_;
+  }
+  void SetUp() override {
+    ASSERT_EQ(run_->status, 0) << run_->err;
+    ASSERT_NE(report_, nullptr);
+  }
+  static std::string* dir_;
+  static RunResult* run_;
+  static nlohmann::json* report_;
+};
+
+std::string* AuAgHoldout::dir_ = nullptr;
+RunResult* AuAgHoldout::run_ = nullptr;
+nlohmann::json* AuAgHoldout::report_ = nullptr;
+
+TEST_F(AuAgHoldout, ReportJsonHasTheDocumentedShape) {
+  const nlohmann::json& r = *report_;
+  EXPECT_TRUE(run_->err.empty()) << "--quiet printed: " << run_->err;
+  EXPECT_EQ(r["format"], "alloycolor-validation");
+  EXPECT_TRUE(r["data"].is_string());
+  EXPECT_NE(r["data"].get<std::string>().find("Au-Ag"), std::string::npos);
+  EXPECT_EQ(r["methods"], nlohmann::json({"paper", "eps-linear", "smooth"}));
+  EXPECT_EQ(r["mode"], "holdout");
+  EXPECT_TRUE(r["delta_e00_available"].get<bool>());
+  ASSERT_EQ(r["holdouts"].size(), 2u);
+  EXPECT_DOUBLE_EQ(r["holdouts"][0]["x"].get<double>(), 0.3);
+  EXPECT_DOUBLE_EQ(r["holdouts"][1]["x"].get<double>(), 0.7);
+  for (const auto& h : r["holdouts"]) {
+    // Every method trained on the same split: all samples but the two held out.
+    EXPECT_EQ(h["train_x"], nlohmann::json({0.0, 0.1, 0.2, 0.4, 0.5, 0.6, 0.8, 0.9, 1.0}));
+    for (const std::string method : {"paper", "eps-linear", "smooth"}) {
+      SCOPED_TRACE(method + " at x = " + h["x"].dump());
+      const auto& m = h["results"][method];
+      ASSERT_TRUE(m.is_object());
+      ASSERT_TRUE(m["delta_e00"].is_object());
+      for (const char* angle : {"0", "45"}) {
+        ASSERT_TRUE(m["delta_e00"][angle].is_number());
+        EXPECT_GE(m["delta_e00"][angle].get<double>(), 0.0);
+        EXPECT_LT(m["delta_e00"][angle].get<double>(), 10.0);
+      }
+      for (const char* key : {"reflectance_rms", "reflectance_max", "n_max_abs", "k_max_abs"}) {
+        ASSERT_TRUE(m[key].is_number()) << key;
+        EXPECT_GE(m[key].get<double>(), 0.0) << key;
+      }
+      EXPECT_LE(m["reflectance_rms"].get<double>(), m["reflectance_max"].get<double>());
+    }
+    // Uncertainty only where the method has it.
+    EXPECT_TRUE(h["results"]["paper"]["delta_e00_sigma"].is_null());
+    ASSERT_TRUE(h["results"]["smooth"]["delta_e00_sigma"].is_object());
+    EXPECT_GT(h["results"]["smooth"]["delta_e00_sigma"]["0"].get<double>(), 0.0);
+  }
+  for (const char* key : {"delta_e00_0", "delta_e00_45", "reflectance_rms", "reflectance_max",
+                          "n_max_abs", "k_max_abs"}) {
+    ASSERT_TRUE(r["summary"].contains(key)) << key;
+    EXPECT_EQ(r["summary"][key]["smooth"]["count"], 2) << key;
+  }
+  // stdout carries the summary.
+  EXPECT_NE(run_->out.find("delta_e00_0"), std::string::npos);
+}
+
+// The measured and predicted colours recomputed here from files, as a user would.
+TEST_F(AuAgHoldout, DeltaE00AgreesWithPredictOutput) {
+  const render::Colorimeter colorimeter = render::Colorimeter::Load(DataDir(), "D65", 2);
+  const NkSpectrum measured = ReadNkFile(DataDir() + "/Au-Ag/Rioux-Au30Ag70.yml");
+  const auto measured_index = render::IndexOnGrid(colorimeter, measured);
+  for (const std::string method : {"paper", "eps-linear", "smooth"}) {
+    SCOPED_TRACE(method);
+    const std::string model = *dir_ + "/" + method + ".json";
+    const RunResult fit = RunProgram({"fit", "--data", DataDir() + "/Au-Ag", "--exclude",
+                                      "0.3,0.7", "--method", method, "--out", model, "--quiet"});
+    ASSERT_EQ(fit.status, 0) << fit.err;
+    const RunResult predict = RunProgram({"predict", "--model", model, "--x", "0.3"});
+    ASSERT_EQ(predict.status, 0) << predict.err;
+    const std::string csv = *dir_ + "/" + method + ".csv";
+    testing::WriteText(csv, predict.out);
+    const auto predicted_index = render::IndexOnGrid(colorimeter, ReadNkCsv(csv));
+    for (double angle : {0.0, 45.0}) {
+      const render::Lab a = render::LabFromXYZ(
+          render::MaterialXYZ(colorimeter, measured_index, angle), colorimeter.White());
+      const render::Lab b = render::LabFromXYZ(
+          render::MaterialXYZ(colorimeter, predicted_index, angle), colorimeter.White());
+      const double expected = render::DeltaE00(a, b);
+      const std::string key = angle == 0.0 ? "0" : "45";
+      const double reported =
+          (*report_)["holdouts"][0]["results"][method]["delta_e00"][key].get<double>();
+      EXPECT_NEAR(reported, expected, 1e-6) << "angle " << angle;
+    }
+  }
+}
+
+TEST_F(AuAgHoldout, HtmlIsSelfContained) {
+  const std::string html = ReadText(*dir_ + "/report/report.html");
+  EXPECT_EQ(html.rfind("<!DOCTYPE html>", 0), 0u);
+  EXPECT_NE(html.find("</html>"), std::string::npos);
+  EXPECT_NE(html.find("<table"), std::string::npos);
+  EXPECT_NE(html.find("<svg"), std::string::npos);
+  EXPECT_NE(html.find("class=\"best\""), std::string::npos);
+  // Nothing is fetched: no scripts, links, images or external urls (the SVG namespace
+  // name is an identifier, not a fetch).
+  for (const char* bad : {"<script", "<link", "<img", "src=", "@import", "https:"}) {
+    EXPECT_EQ(html.find(bad), std::string::npos) << bad;
+  }
+  std::string rest = html;
+  for (size_t p; (p = rest.find("http://www.w3.org/2000/svg")) != std::string::npos;) {
+    rest.erase(p, 26);
+  }
+  EXPECT_EQ(rest.find("http:"), std::string::npos);
+  for (size_t p = 0; (p = html.find("url(", p)) != std::string::npos; ++p) {
+    EXPECT_EQ(html.compare(p, 5, "url(#"), 0) << html.substr(p, 40);
+  }
+  // The measured and predicted swatch colours of the report appear in the page.
+  for (const auto& h : (*report_)["holdouts"]) {
+    EXPECT_NE(html.find(h["measured"]["srgb_hex"]["0"].get<std::string>()), std::string::npos);
+    EXPECT_NE(html.find(h["results"]["smooth"]["srgb_hex"]["45"].get<std::string>()),
+              std::string::npos);
+  }
+}
+
+// RGBA pixels of a PNG file (libpng's simplified API).
+std::vector<std::uint8_t> ReadPng(const std::string& path, int* width, int* height) {
+  png_image image{};
+  image.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_file(&image, path.c_str())) return {};
+  image.format = PNG_FORMAT_RGBA;
+  std::vector<std::uint8_t> pixels(PNG_IMAGE_SIZE(image));
+  if (!png_image_finish_read(&image, nullptr, pixels.data(), 0, nullptr)) return {};
+  *width = static_cast<int>(image.width);
+  *height = static_cast<int>(image.height);
+  return pixels;
+}
+
+TEST_F(AuAgHoldout, RendersInHeadlessChromium) {
+  if (!fs::exists("/usr/bin/chromium")) {
+    GTEST_SKIP() << "/usr/bin/chromium is absent (Debian package chromium)";
+  }
+  const std::string shot = *dir_ + "/shot.png";
+  const std::string command =
+      "timeout 120 /usr/bin/chromium --headless --no-sandbox --disable-gpu --no-first-run "
+      "--disable-background-networking --disable-component-update --disable-sync "
+      "--user-data-dir=" + *dir_ + "/chromium-profile --screenshot=" + shot +
+      " --window-size=1200,3000 file://" + *dir_ + "/report/report.html >" + *dir_ +
+      "/chromium.log 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0) << ReadText(*dir_ + "/chromium.log");
+  int width = 0, height = 0;
+  const std::vector<std::uint8_t> px = ReadPng(shot, &width, &height);
+  ASSERT_FALSE(px.empty()) << "cannot read " << shot;
+  EXPECT_EQ(width, 1200);
+  EXPECT_EQ(height, 3000);
+  // Not blank: a fair share of non-white pixels and many distinct colours.
+  long non_white = 0;
+  std::set<std::uint32_t> colours;
+  std::map<std::uint32_t, long> counts;
+  for (size_t i = 0; i + 3 < px.size(); i += 4) {
+    const std::uint32_t c = (px[i] << 16) | (px[i + 1] << 8) | px[i + 2];
+    non_white += c != 0xffffff;
+    colours.insert(c);
+    ++counts[c];
+  }
+  EXPECT_GT(non_white, static_cast<long>(width) * height / 50);
+  EXPECT_GT(colours.size(), 100u);
+  // The measured swatch of x = 0.3 is painted (a 96 x 64 chip, less its border).
+  const std::string hex = (*report_)["holdouts"][0]["measured"]["srgb_hex"]["0"];
+  const std::uint32_t swatch = std::stoul(hex.substr(1), nullptr, 16);
+  EXPECT_GT(counts[swatch], 3000) << "swatch " << hex << " not found in the screenshot";
+}
+
+TEST(Validate, InfraredDataHaveNoColourButSpectralMetrics) {
+  const std::string dir = MakeTempDir();
+  const RunResult run =
+      RunProgram({"validate", "--data", DataDir() + "/Nb-Sn", "--loo", "--methods",
+                  "paper,eps-linear", "--out", dir + "/r", "--quiet"});
+  ASSERT_EQ(run.status, 0) << run.err;
+  const auto r = nlohmann::json::parse(ReadText(dir + "/r/report.json"));
+  EXPECT_EQ(r["mode"], "loo");
+  EXPECT_FALSE(r["delta_e00_available"].get<bool>());
+  EXPECT_NE(r["metric_ranges"]["delta_e00"].get<std::string>().find("not available"),
+            std::string::npos);
+  ASSERT_EQ(r["holdouts"].size(), 7u);  // the interior samples
+  for (const auto& h : r["holdouts"]) {
+    EXPECT_NE(h["metric_range"].get<std::string>().find("1000-"), std::string::npos);
+    for (const char* method : {"paper", "eps-linear"}) {
+      const auto& m = h["results"][method];
+      EXPECT_TRUE(m["delta_e00"].is_null());
+      EXPECT_TRUE(m["reflectance_rms"].is_number());
+      EXPECT_TRUE(m["k_max_abs"].is_number());
+    }
+  }
+  const std::string html = ReadText(dir + "/r/report.html");
+  EXPECT_NE(html.find("not available"), std::string::npos);
+  fs::remove_all(dir);
+}
+
+TEST(Validate, LeaveOneOutReportsProgress) {
+  const std::string dir = MakeTempDir();
+  const RunResult run = RunProgram({"validate", "--data", DataDir() + "/Cu-Zn", "--loo",
+                                    "--methods", "paper,eps-linear", "--out", dir});
+  ASSERT_EQ(run.status, 0) << run.err;
+  EXPECT_NE(run.err.find("validate [1/6] paper"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("validate [6/6] eps-linear"), std::string::npos) << run.err;
+  const auto r = nlohmann::json::parse(ReadText(dir + "/report.json"));
+  ASSERT_EQ(r["holdouts"].size(), 3u);
+  // A weight-fraction manifest: x is the atomic fraction, x_given the manifest's number.
+  EXPECT_DOUBLE_EQ(r["holdouts"][1]["x_given"].get<double>(), 0.85);
+  EXPECT_NEAR(r["holdouts"][1]["x"].get<double>(), 0.8536, 1e-4);
+  fs::remove_all(dir);
+}
+
+TEST(Validate, HoldoutMatchesTheManifestNumbers) {
+  const std::string dir = MakeTempDir();
+  const RunResult run = RunProgram({"validate", "--data", DataDir() + "/Cu-Zn", "--holdout",
+                                    "0.85", "--methods", "eps-linear", "--out", dir, "--quiet"});
+  ASSERT_EQ(run.status, 0) << run.err;
+  const auto r = nlohmann::json::parse(ReadText(dir + "/report.json"));
+  ASSERT_EQ(r["holdouts"].size(), 1u);
+  EXPECT_EQ(r["holdouts"][0]["file"], "Querry-Cu85Zn15.yml");
+  fs::remove_all(dir);
+}
+
+// A failing run: status 2, one line naming `needle`, no report folder.
+void ExpectRefused(const std::vector<std::string>& extra, const std::string& needle) {
+  const std::string dir = MakeTempDir();
+  std::vector<std::string> args = {"validate", "--data", DataDir() + "/Au-Ag", "--out",
+                                   dir + "/report", "--quiet"};
+  args.insert(args.end(), extra.begin(), extra.end());
+  const RunResult run = RunProgram(args);
+  EXPECT_EQ(run.status, 2) << run.err;
+  EXPECT_EQ(CountLines(run.err), 1) << run.err;
+  EXPECT_NE(run.err.find(needle), std::string::npos) << run.err;
+  EXPECT_FALSE(fs::exists(dir + "/report/report.json"));
+  EXPECT_FALSE(fs::exists(dir + "/report/report.html"));
+  fs::remove_all(dir);
+}
+
+TEST(Validate, RefusesAHoldoutThatIsNotASample) {
+  ExpectRefused({"--holdout", "0.3,0.35"}, "0.35");
+}
+
+TEST(Validate, RefusesAnEndSampleAsHoldout) {
+  ExpectRefused({"--holdout", "0"}, "end sample");
+  ExpectRefused({"--holdout", "0.5,1"}, "end sample");
+}
+
+TEST(Validate, RefusesBadOptions) {
+  ExpectRefused({"--holdout", "0.3", "--loo"}, "not both");
+  ExpectRefused({"--holdout", "0.3", "--methods", "paper,nonesuch"}, "nonesuch");
+  ExpectRefused({"--holdout", "0.3", "--angles", "95"}, "--angles");
+}
+
+TEST(Validate, UnwritableOutExitsTwoWithoutAReport) {
+  const std::string dir = MakeTempDir();
+  testing::WriteText(dir + "/file", "not a folder\n");
+  for (const std::string out : {dir + "/file", dir + "/file/report"}) {
+    const RunResult run = RunProgram({"validate", "--data", DataDir() + "/Au-Ag", "--holdout",
+                                      "0.5", "--methods", "paper", "--out", out, "--quiet"});
+    EXPECT_EQ(run.status, 2) << run.err;
+    EXPECT_EQ(CountLines(run.err), 1) << run.err;
+    EXPECT_NE(run.err.find(dir + "/file"), std::string::npos) << run.err;
+  }
+  // Nothing but the file we made.
+  int entries = 0;
+  for (const auto& e : fs::directory_iterator(dir)) entries += e.path().filename() != "file";
+  EXPECT_EQ(entries, 0);
+  EXPECT_EQ(ReadText(dir + "/file"), "not a folder\n");
+  fs::remove_all(dir);
+}
+
+TEST(Validate, ReplacesAnOldReportWhole) {
+  const std::string dir = MakeTempDir();
+  testing::WriteText(dir + "/report.json", "old");
+  const RunResult run = RunProgram({"validate", "--data", DataDir() + "/Au-Ag", "--holdout",
+                                    "0.5", "--methods", "eps-linear", "--out", dir, "--quiet"});
+  ASSERT_EQ(run.status, 0) << run.err;
+  EXPECT_NO_THROW(nlohmann::json::parse(ReadText(dir + "/report.json")));
+  // No temporary or probe files left behind.
+  std::set<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir)) names.insert(e.path().filename());
+  EXPECT_EQ(names, (std::set<std::string>{"report.json", "report.html"}));
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace alloycolor

@@ -13,10 +13,11 @@
 // (ln gamma, ln wp^2); Ceres refines it on eps. D is chosen by leave-one-composition-out
 // cross-validation over the interior samples unless fixed, scored by the left-out
 // samples' normal-incidence reflectance error (what colour depends on) (a fold is fitted with degree
-// D - 1, so it keeps the final fit's degrees of freedom). Covariance: ceres::Covariance on
-// each node's block, scaled by the larger of the data residual variance and the
-// cross-validated variance (an interpolating fit has no residual to scale by, but it
-// still errs between samples).
+// D - 1, so it keeps the final fit's degrees of freedom). Covariance: ceres::Covariance of
+// each node's coefficients on that node's data (the curvature prior left out, which is
+// conservative), scaled by the larger of the data residual variance and the
+// cross-validated variance (an interpolating fit has no residual to scale by, but it still
+// errs between samples).
 #ifndef ALLOYCOLOR_FIT_SMOOTH_FIT_H_
 #define ALLOYCOLOR_FIT_SMOOTH_FIT_H_
 

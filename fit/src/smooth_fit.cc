@@ -162,14 +162,15 @@ std::vector<std::vector<double>> StartFromModel(const SmoothModel& old, const Gr
 }
 
 // Covariance of each node's coefficients: ceres::Covariance on the node's own data (and
-// ridge) residuals at the solution, scaled by `variance`. The curvature prior that couples
+// ridge) residuals at the solution, scaled by that node's `variance`. The curvature prior that couples
 // neighbouring nodes is left out, which makes the estimate slightly conservative, keeps
 // the cost linear in the number of nodes and the result independent of memory layout.
 template <int kNb>
 std::vector<std::vector<double>> NodeCovariances(const GridData& g, const std::vector<char>& in,
                                                  const Basis& basis,
                                                  const SmoothFitOptions& options,
-                                                 std::vector<double> flat, double variance);
+                                                 std::vector<double> flat,
+                                                 const std::vector<double>& variance);
 
 struct SolveStats {
   double final_cost = 0, data_sum_sq = 0;
@@ -177,7 +178,7 @@ struct SolveStats {
   bool converged = false;
   std::string termination;
   size_t data_residuals = 0;
-  double residual_variance = 0, variance_used = 0;
+  double residual_variance = 0;
   std::vector<std::vector<double>> covariance;
 };
 
@@ -185,7 +186,8 @@ template <int kNb>
 std::vector<std::vector<double>> NodeCovariances(const GridData& g, const std::vector<char>& in,
                                                  const Basis& basis,
                                                  const SmoothFitOptions& options,
-                                                 std::vector<double> flat, double variance) {
+                                                 std::vector<double> flat,
+                                                 const std::vector<double>& variance) {
   const size_t nodes = g.grid_nm.size();
   std::vector<std::vector<double>> result(nodes);
   for (size_t j = 0; j < nodes; ++j) {
@@ -212,7 +214,7 @@ std::vector<std::vector<double>> NodeCovariances(const GridData& g, const std::v
     std::vector<double> cov(4 * kNb * kNb, 0.0);
     if (covariance.Compute(pairs, &problem)) {
       covariance.GetCovarianceBlock(block, block, cov.data());
-      for (double& v : cov) v *= variance;
+      for (double& v : cov) v *= variance[j];
     }
     result[j] = std::move(cov);
   }
@@ -221,7 +223,7 @@ std::vector<std::vector<double>> NodeCovariances(const GridData& g, const std::v
 
 template <int kNb>
 SolveStats Solve(const GridData& g, const std::vector<char>& in, const Basis& basis,
-                 const SmoothFitOptions& options, bool want_covariance, double min_variance,
+                 const SmoothFitOptions& options, bool want_covariance, const std::vector<double>& min_variance,
                  std::vector<std::vector<double>>* coeffs) {
   const size_t nodes = g.grid_nm.size();
   // All nodes' coefficients in one buffer, in node order: Ceres orders parameter blocks by
@@ -293,15 +295,19 @@ SolveStats Solve(const GridData& g, const std::vector<char>& in, const Basis& ba
     const double params = static_cast<double>(nodes * 2 * kNb);
     const double dof = std::max(static_cast<double>(stats.data_residuals) - params, 1.0);
     stats.residual_variance = stats.data_sum_sq / dof;
-    stats.variance_used = std::max(stats.residual_variance, min_variance);
-    stats.covariance = NodeCovariances<kNb>(g, in, basis, options, flat, stats.variance_used);
+    std::vector<double> variance(nodes, stats.residual_variance);
+    for (size_t j = 0; j < nodes && j < min_variance.size(); ++j) {
+      variance[j] = std::max(variance[j], min_variance[j]);
+    }
+    stats.covariance = NodeCovariances<kNb>(g, in, basis, options, flat, variance);
   }
   return stats;
 }
 
 SolveStats SolveAny(int nb, const GridData& g, const std::vector<char>& in,
                     const Basis& basis, const SmoothFitOptions& options, bool want_covariance,
-                    double min_variance, std::vector<std::vector<double>>* coeffs) {
+                    const std::vector<double>& min_variance,
+                    std::vector<std::vector<double>>* coeffs) {
   switch (nb) {
     case 1: return Solve<1>(g, in, basis, options, want_covariance, min_variance, coeffs);
     case 2: return Solve<2>(g, in, basis, options, want_covariance, min_variance, coeffs);
@@ -330,6 +336,22 @@ double SampleRms(const GridData& g, size_t i, const Basis& basis, int nb,
     ++count;
   }
   return count ? std::sqrt(sum / (2.0 * count)) : 0.0;
+}
+
+// Adds sample i's squared residuals (mean of the two parts) to each usable node's sum.
+void AddNodeSquares(const GridData& g, size_t i, const Basis& basis, int nb,
+                    const std::vector<std::vector<double>>& coeffs, std::vector<double>* sq,
+                    std::vector<int>* count) {
+  double p[kSmoothMaxDegree + 1];
+  LegendreBasis(basis.U(g.x[i]), nb - 1, p);
+  for (size_t j = 0; j < g.grid_nm.size(); ++j) {
+    if (!g.usable[i][j]) continue;
+    const Complex<double> e = SmoothNodePermittivity(coeffs[j].data(), p, nb, g.omega_ev[j]);
+    const double scale = std::norm(g.eps[i][j]);
+    (*sq)[j] += 0.5 * (std::pow(e.re - g.eps[i][j].real(), 2) +
+                       std::pow(e.im - g.eps[i][j].imag(), 2)) / scale;
+    ++(*count)[j];
+  }
 }
 
 // RMS error of sample i's normal-incidence reflectance (usable nodes only): what colour
@@ -373,7 +395,8 @@ SmoothFitResult FitSmooth(const Dataset& dataset, const SmoothFitOptions& option
   if (degree > kSmoothMaxDegree) {
     throw Error("smooth fit: degree must lie in 0.." + std::to_string(kSmoothMaxDegree));
   }
-  double cv_variance = 0;  // mean squared left-out residual at the chosen degree
+  // Mean squared left-out residual at each node for the chosen degree.
+  std::vector<double> cv_variance;
   if (degree < 0) {
     // Leave-one-composition-out over the interior samples. A fold has one sample fewer,
     // so it is fitted with one degree less than the final fit: both then leave the same
@@ -389,11 +412,14 @@ SmoothFitResult FitSmooth(const Dataset& dataset, const SmoothFitOptions& option
         const int fold_nb = d;  // degree d - 1
         double sum = 0, sum_r = 0;
         int folds = 0;
+        std::vector<double> node_sq(grid.size(), 0.0);
+        std::vector<int> node_count(grid.size(), 0);
         for (size_t out = 1; out + 1 < n; ++out) {
           std::vector<char> in = AllSamples(g);
           in[out] = 0;
           auto coeffs = StartFromInversion(g, in, basis, fold_nb);
-          SolveAny(fold_nb, g, in, basis, options, false, 0.0, &coeffs);
+          SolveAny(fold_nb, g, in, basis, options, false, {}, &coeffs);
+          AddNodeSquares(g, out, basis, fold_nb, coeffs, &node_sq, &node_count);
           const double rms = SampleRms(g, out, basis, fold_nb, coeffs);
           const double rms_r = SampleReflectanceRms(g, out, basis, fold_nb, coeffs);
           sum += rms * rms;
@@ -410,7 +436,10 @@ SmoothFitResult FitSmooth(const Dataset& dataset, const SmoothFitOptions& option
         if (rms_r < best) {
           best = rms_r;
           degree = d;
-          cv_variance = rms * rms;
+          cv_variance.assign(grid.size(), 0.0);
+          for (size_t j = 0; j < grid.size(); ++j) {
+            if (node_count[j]) cv_variance[j] = node_sq[j] / node_count[j];
+          }
         }
       }
     }
@@ -458,7 +487,9 @@ SmoothFitResult FitSmooth(const Dataset& dataset, const SmoothFitOptions& option
         "scaled by the larger of the data residual variance and the leave-one-out variance "
         "at the chosen degree";
     fit["residual_variance"] = stats.residual_variance;
-    fit["cross_validation_variance"] = cv_variance;
+    double mean = 0;
+    for (double v : cv_variance) mean += v / cv_variance.size();
+    fit["cross_validation_variance_mean"] = mean;
   }
 
   result.model = std::make_unique<SmoothModel>(dataset, grid, degree, std::move(coeffs),

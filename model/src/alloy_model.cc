@@ -7,6 +7,7 @@
 #include "alloycolor/model/error.h"
 #include "alloycolor/model/io.h"
 #include "alloycolor/model/optics.h"
+#include "alloycolor/model/physical_model.h"
 #include "alloycolor/model/sample_models.h"
 #include "alloycolor/model/smooth_model.h"
 
@@ -168,6 +169,7 @@ std::unique_ptr<AlloyModel> ModelFromJson(const nlohmann::json& doc,
       return std::make_unique<SampleModel>(SampleModel::Kind::kEpsLinear, doc, source);
     }
     if (method == "smooth") return std::make_unique<SmoothModel>(doc, source);
+    if (method == "physical") return std::make_unique<PhysicalModel>(doc, source);
     throw Error("unknown method '" + method + "'");
   } catch (const nlohmann::json::exception& e) {
     throw Error(source + ": damaged model: " + e.what());

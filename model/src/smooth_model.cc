@@ -141,10 +141,18 @@ std::vector<std::vector<std::complex<double>>> SmoothModel::PermittivityDraws(
   // Square roots of the node covariances (eigen-decomposition, negative rounding clamped).
   std::vector<Eigen::MatrixXd> roots;
   for (const auto& cov : covariance_) {
+    // Cholesky factors vary continuously from node to node, so one standard-normal vector
+    // moves neighbouring nodes alike; eigen-decomposition where the matrix is singular.
     Eigen::Map<const Eigen::MatrixXd> c(cov.data(), nc, nc);
-    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(0.5 * (c + c.transpose()));
-    roots.push_back(eig.eigenvectors() *
-                    eig.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal());
+    const Eigen::MatrixXd sym = 0.5 * (c + c.transpose());
+    Eigen::LLT<Eigen::MatrixXd> llt(sym);
+    if (llt.info() == Eigen::Success) {
+      roots.push_back(llt.matrixL());
+    } else {
+      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(sym);
+      roots.push_back(eig.eigenvectors() *
+                      eig.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal());
+    }
   }
   std::mt19937 rng(seed);
   std::normal_distribution<double> normal;

@@ -1,0 +1,69 @@
+// Joint Ceres fit of the "physical" model (model/physical_model.h) to all samples of a
+// data set: one Drude term plus interband terms, every parameter a polynomial of degree D
+// in composition, all samples and wavelengths in one problem.
+//
+// Cost: 1/2 the sum over samples i and wavelengths j of |eps_model(x_i, w_j) - eps_ij|^2 /
+// |eps_ij|^2 (real and imaginary parts), over every finite point: eps_inf and the
+// interband terms represent eps1 > 1, so no point contradicts the model.
+//
+// Start. (1) Each end sample (lowest and highest composition, normally the pure
+// elements) is fitted alone (degree 0) from a grid of starting centres for the interband
+// terms: every combination of kStartCentres energies spread over the fit range (terms of
+// one kind in increasing order), the Drude term from the pointwise inversion (eq. 11, 12)
+// at the longest wavelength, each term's strength from the data's eps2 there. (2) The
+// joint fit starts from the straight line between the ends' polynomials r (coefficients of
+// degree >= 2 at zero), once for each pair of the ends' best kEndCandidates starts, and
+// keeps the lowest cost. Bounds: the phases in [-pi, pi], the constant coefficients of
+// positive parameters in [0, an upper limit] (energies up to 3 times the range's highest
+// photon energy), which keeps the solver out of flat regions where pos(r) is 0.
+//
+// Covariance: ceres::Covariance (dense SVD) of all coefficients, scaled by the residual
+// variance sum r^2 / (residuals - coefficients). When the Jacobian is rank-deficient the
+// pseudo-inverse is used (null_space_rank = -1) and the fit statistics say so.
+// Linear algebra is dense Eigen QR, single-threaded, so the same inputs give the same
+// bytes.
+#ifndef ALLOYCOLOR_FIT_PHYSICAL_FIT_H_
+#define ALLOYCOLOR_FIT_PHYSICAL_FIT_H_
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "alloycolor/model/dataset.h"
+#include "alloycolor/model/physical_model.h"
+
+namespace alloycolor::fit {
+
+struct PhysicalFitOptions {
+  // Fit range; both 0: the samples' common range within 300-1000 nm, or, when that is
+  // shorter than 200 nm (infrared data), the whole common range.
+  double lambda_from_nm = 0;
+  double lambda_to_nm = 0;
+  double lambda_step_nm = 0;  // 0: 5 nm, or (to - from) / 200 for infrared data
+  int degree = 2;             // reduced to (number of compositions - 1) when larger
+  // Interband terms, comma-separated (lorentz, cp, rioux-gap, rioux-edge), "none" for
+  // the Drude term alone, or "auto": none for infrared data; otherwise each of
+  // kAutoTerms is fitted to the end samples and the lowest cost wins.
+  std::string terms = "auto";
+  int max_iterations = 200;
+  bool covariance = true;
+  std::function<void(const std::string& message)> progress;  // may be empty
+};
+
+// The candidates "auto" tries on visible data.
+inline const char* const kAutoTerms[] = {"rioux-gap,rioux-edge", "cp,cp", "lorentz,lorentz,lorentz"};
+
+struct PhysicalFitResult {
+  std::unique_ptr<PhysicalModel> model;
+  std::string terms;  // the interband terms used ("none" for Drude only)
+};
+
+// Throws Error when the data set has fewer than two compositions, when the samples share
+// no wavelength range or do not cover the requested one (naming the sample), or for a
+// bad option (naming it).
+PhysicalFitResult FitPhysical(const Dataset& dataset, const PhysicalFitOptions& options);
+
+}  // namespace alloycolor::fit
+
+#endif  // ALLOYCOLOR_FIT_PHYSICAL_FIT_H_

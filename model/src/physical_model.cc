@@ -1,0 +1,389 @@
+#include "alloycolor/model/physical_model.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <random>
+#include <sstream>
+
+#include "alloycolor/model/error.h"
+#include "alloycolor/model/units.h"
+
+namespace alloycolor {
+
+namespace {
+
+struct KindName {
+  TermKind kind;
+  const char* name;
+};
+constexpr KindName kKindNames[] = {{TermKind::kDrude, "drude"},
+                                   {TermKind::kLorentz, "lorentz"},
+                                   {TermKind::kCriticalPoint, "cp"},
+                                   {TermKind::kRiouxGap, "rioux-gap"},
+                                   {TermKind::kRiouxEdge, "rioux-edge"}};
+
+std::string Trim(const std::string& text) {
+  const size_t b = text.find_first_not_of(" \t");
+  if (b == std::string::npos) return "";
+  const size_t e = text.find_last_not_of(" \t");
+  return text.substr(b, e - b + 1);
+}
+
+}  // namespace
+
+const char* TermKindName(TermKind kind) {
+  for (const auto& k : kKindNames) {
+    if (k.kind == kind) return k.name;
+  }
+  return "?";
+}
+
+TermKind TermKindFromName(const std::string& name) {
+  for (const auto& k : kKindNames) {
+    if (name == k.name) return k.kind;
+  }
+  throw Error("unknown term kind '" + name + "' (drude, lorentz, cp, rioux-gap, rioux-edge)");
+}
+
+std::vector<TermKind> ParseInterbandTerms(const std::string& text) {
+  std::vector<TermKind> kinds;
+  const std::string all = Trim(text);
+  if (all.empty() || all == "none") return kinds;
+  std::stringstream in(all);
+  std::string part;
+  while (std::getline(in, part, ',')) {
+    const std::string name = Trim(part);
+    if (name.empty()) throw Error("terms '" + text + "': empty term kind");
+    const TermKind kind = TermKindFromName(name);
+    if (kind == TermKind::kDrude) {
+      throw Error("terms '" + text + "': the drude term is always there; list interband "
+                  "terms only (lorentz, cp, rioux-gap, rioux-edge)");
+    }
+    kinds.push_back(kind);
+  }
+  if (all.back() == ',') throw Error("terms '" + text + "': empty term kind");
+  if (kinds.size() > static_cast<size_t>(kPhysicalMaxInterbandTerms)) {
+    throw Error("terms '" + text + "': at most " + std::to_string(kPhysicalMaxInterbandTerms) +
+                " interband terms");
+  }
+  return kinds;
+}
+
+std::string InterbandTermsText(const std::vector<TermKind>& kinds) {
+  if (kinds.empty()) return "none";
+  std::string text;
+  for (size_t i = 0; i < kinds.size(); ++i) text += (i ? "," : "") + std::string(TermKindName(kinds[i]));
+  return text;
+}
+
+PhysicalLayout::PhysicalLayout(std::vector<TermKind> interband, int degree)
+    : interband_(std::move(interband)), degree_(degree) {
+  if (degree_ < 0 || degree_ > kPhysicalMaxDegree) {
+    throw Error("physical model: degree must lie in 0.." + std::to_string(kPhysicalMaxDegree));
+  }
+  if (interband_.size() > static_cast<size_t>(kPhysicalMaxInterbandTerms)) {
+    throw Error("physical model: at most " + std::to_string(kPhysicalMaxInterbandTerms) +
+                " interband terms");
+  }
+  auto add = [&](int term, const char* name, ParameterMap map, int reference) {
+    parameters_.push_back({term, term_kind(term), name, map, reference});
+  };
+  term_offset_.push_back(0);
+  add(0, "eps_inf", ParameterMap::kOnePlusPositive, -1);
+  add(0, "wp_eV", ParameterMap::kPositive, -1);
+  add(0, "gamma_eV", ParameterMap::kPositive, -1);
+  // The centre of the latest term of each kind, for ordering.
+  std::vector<std::pair<TermKind, int>> last_centre;
+  for (int t = 1; t <= static_cast<int>(interband_.size()); ++t) {
+    const TermKind kind = interband_[t - 1];
+    if (kind == TermKind::kDrude) throw Error("physical model: one drude term only");
+    term_offset_.push_back(num_parameters());
+    add(t, "A", ParameterMap::kPositive, -1);
+    int below = -1;
+    for (const auto& [k, index] : last_centre) {
+      if (k == kind) below = index;
+    }
+    const int centre = num_parameters();
+    add(t, "E0_eV", below < 0 ? ParameterMap::kPositive : ParameterMap::kAbove, below);
+    last_centre.emplace_back(kind, centre);
+    if (kind == TermKind::kRiouxGap) add(t, "Eg_eV", ParameterMap::kAbove, centre);
+    add(t, "G_eV", ParameterMap::kPositive, -1);
+    if (kind == TermKind::kCriticalPoint) add(t, "phi_rad", ParameterMap::kFree, -1);
+  }
+}
+
+int PhysicalLayout::Find(int term, const std::string& name) const {
+  for (int k = 0; k < num_parameters(); ++k) {
+    if (parameters_[k].term == term && name == parameters_[k].name) return k;
+  }
+  return -1;
+}
+
+PhysicalModel::PhysicalModel(const Dataset& dataset, double lambda_min_nm,
+                             double lambda_max_nm, PhysicalLayout layout,
+                             std::vector<double> coeffs, std::vector<double> covariance)
+    : layout_(std::move(layout)), coeffs_(std::move(coeffs)), covariance_(std::move(covariance)) {
+  SetCommon(dataset, lambda_min_nm, lambda_max_nm);
+  Validate(dataset.manifest_path);
+}
+
+namespace {
+
+// Reads a number, naming the field.
+double FieldNumber(const nlohmann::json& value, const std::string& where) {
+  if (!value.is_number()) throw Error(where + ": expected a number");
+  const double v = value.get<double>();
+  if (!std::isfinite(v)) throw Error(where + ": not a finite number");
+  return v;
+}
+
+const nlohmann::json& FieldAt(const nlohmann::json& obj, const char* key,
+                              const std::string& where) {
+  if (!obj.is_object() || !obj.contains(key)) {
+    throw Error(where + ": missing field '" + key + "'");
+  }
+  return obj.at(key);
+}
+
+std::string MapText(const PhysicalLayout& layout, const PhysicalParameter& p) {
+  switch (p.map) {
+    case ParameterMap::kPositive: return "pos(r)";
+    case ParameterMap::kOnePlusPositive: return "1 + pos(r)";
+    case ParameterMap::kFree: return "r";
+    case ParameterMap::kAbove: {
+      const PhysicalParameter& ref = layout.parameters()[p.reference];
+      return std::string("terms[") + std::to_string(ref.term) + "]." + ref.name + " + pos(r)";
+    }
+  }
+  return "";
+}
+
+}  // namespace
+
+PhysicalModel::PhysicalModel(const nlohmann::json& doc, const std::string& source) {
+  ReadCommon(doc);
+  const std::string p = "parameters";
+  const nlohmann::json& params = FieldAt(doc, "parameters", "model");
+  const nlohmann::json& degree_field = FieldAt(params, "degree", p);
+  if (!degree_field.is_number_integer()) throw Error(p + ".degree: expected an integer");
+  const int degree = degree_field.get<int>();
+  if (degree < 0 || degree > kPhysicalMaxDegree) {
+    throw Error(p + ".degree: must lie in 0.." + std::to_string(kPhysicalMaxDegree));
+  }
+  const nlohmann::json& terms = FieldAt(params, "terms", p);
+  if (!terms.is_array() || terms.empty()) throw Error(p + ".terms: expected a non-empty array");
+  std::vector<TermKind> interband;
+  for (size_t t = 0; t < terms.size(); ++t) {
+    const std::string where = p + ".terms[" + std::to_string(t) + "].kind";
+    const nlohmann::json& kind = FieldAt(terms[t], "kind", where.substr(0, where.size() - 5));
+    if (!kind.is_string()) throw Error(where + ": expected a string");
+    TermKind k;
+    try {
+      k = TermKindFromName(kind.get<std::string>());
+    } catch (const Error& e) {
+      throw Error(where + ": " + e.what());
+    }
+    if ((t == 0) != (k == TermKind::kDrude)) {
+      throw Error(where + ": the first term, and only it, must be drude");
+    }
+    if (t > 0) interband.push_back(k);
+  }
+  if (interband.size() > static_cast<size_t>(kPhysicalMaxInterbandTerms)) {
+    throw Error(p + ".terms: at most " + std::to_string(kPhysicalMaxInterbandTerms) +
+                " interband terms");
+  }
+  layout_ = PhysicalLayout(interband, degree);
+  const int nb = layout_.basis_size();
+  coeffs_.assign(layout_.num_coefficients(), 0.0);
+  for (int t = 0; t < layout_.num_terms(); ++t) {
+    const std::string tw = p + ".terms[" + std::to_string(t) + "]";
+    const nlohmann::json& list = FieldAt(terms[t], "parameters", tw);
+    const int first = layout_.term_offset(t);
+    const int count =
+        (t + 1 < layout_.num_terms() ? layout_.term_offset(t + 1) : layout_.num_parameters()) -
+        first;
+    if (!list.is_array() || static_cast<int>(list.size()) != count) {
+      throw Error(tw + ".parameters: expected " + std::to_string(count) + " entries");
+    }
+    for (int i = 0; i < count; ++i) {
+      const PhysicalParameter& spec = layout_.parameters()[first + i];
+      const std::string pw = tw + ".parameters[" + std::to_string(i) + "]";
+      const nlohmann::json& name = FieldAt(list[i], "name", pw);
+      if (!name.is_string() || name.get<std::string>() != spec.name) {
+        throw Error(pw + ".name: expected '" + spec.name + "'");
+      }
+      const nlohmann::json& c = FieldAt(list[i], "coefficients", pw);
+      if (!c.is_array() || static_cast<int>(c.size()) != nb) {
+        throw Error(pw + ".coefficients: expected " + std::to_string(nb) + " numbers");
+      }
+      for (int d = 0; d < nb; ++d) {
+        coeffs_[(first + i) * nb + d] =
+            FieldNumber(c[d], pw + ".coefficients[" + std::to_string(d) + "]");
+      }
+    }
+  }
+  covariance_.clear();
+  if (params.contains("covariance")) {
+    const nlohmann::json& cov = params.at("covariance");
+    if (!cov.is_array()) throw Error(p + ".covariance: expected an array");
+    for (size_t i = 0; i < cov.size(); ++i) {
+      covariance_.push_back(FieldNumber(cov[i], p + ".covariance[" + std::to_string(i) + "]"));
+    }
+  }
+  Validate(source);
+}
+
+void PhysicalModel::Validate(const std::string& source) const {
+  const std::string where = source + ": physical model: ";
+  const size_t nc = static_cast<size_t>(layout_.num_coefficients());
+  if (coeffs_.size() != nc) {
+    throw Error(where + "parameters: expected " + std::to_string(nc) + " coefficients");
+  }
+  for (double c : coeffs_) {
+    if (!std::isfinite(c) || std::abs(c) > 1e6) {
+      throw Error(where + "parameters: coefficient out of range");
+    }
+  }
+  if (!covariance_.empty() && covariance_.size() != nc * nc) {
+    throw Error(where + "parameters.covariance: expected " + std::to_string(nc * nc) +
+                " values");
+  }
+  for (double c : covariance_) {
+    if (!std::isfinite(c)) throw Error(where + "parameters.covariance: not finite");
+  }
+  if (!(x_max() > x_min())) throw Error(where + "x_range must not be empty");
+  if (!(lambda_min_nm() > 0)) throw Error(where + "lambda_range_nm must be positive");
+}
+
+double PhysicalModel::BasisArgument(double x_atomic) const {
+  return 2.0 * (x_atomic - x_min()) / (x_max() - x_min()) - 1.0;
+}
+
+void PhysicalModel::AddWarnings(const std::vector<std::string>& warnings) {
+  for (const auto& w : warnings) AddWarning(w);
+}
+
+std::vector<double> PhysicalModel::Values(double x_atomic, const double* coeffs) const {
+  double basis[kPhysicalMaxDegree + 1];
+  LegendreBasis(BasisArgument(x_atomic), layout_.degree(), basis);
+  std::vector<double> raw(layout_.num_parameters()), values(layout_.num_parameters());
+  PhysicalRawFromCoefficients(layout_, coeffs, basis, raw.data());
+  PhysicalValuesFromRaw(layout_, raw.data(), values.data());
+  return values;
+}
+
+std::vector<std::complex<double>> PhysicalModel::Evaluate(double x_atomic,
+                                                          const std::vector<double>& lambda_nm,
+                                                          const double* coeffs) const {
+  CheckLambda(lambda_nm);
+  const std::vector<double> values = Values(x_atomic, coeffs);
+  std::vector<std::complex<double>> eps(lambda_nm.size());
+  for (size_t i = 0; i < lambda_nm.size(); ++i) {
+    const Complex<double> e =
+        PhysicalPermittivity(layout_, values.data(), OmegaEvFromLambdaNm(lambda_nm[i]));
+    eps[i] = {std::isfinite(e.re) ? e.re : 0.0, std::isfinite(e.im) ? e.im : 0.0};
+  }
+  return eps;
+}
+
+std::vector<std::complex<double>> PhysicalModel::Permittivity(
+    double x_atomic, const std::vector<double>& lambda_nm) const {
+  return Evaluate(x_atomic, lambda_nm, coeffs_.data());
+}
+
+std::vector<std::vector<std::complex<double>>> PhysicalModel::PermittivityDraws(
+    double x_atomic, const std::vector<double>& lambda_nm, int count,
+    std::uint32_t seed) const {
+  if (covariance_.empty()) return {};
+  const int nc = layout_.num_coefficients();
+  Eigen::Map<const Eigen::MatrixXd> c(covariance_.data(), nc, nc);
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(0.5 * (c + c.transpose()));
+  const Eigen::MatrixXd root =
+      eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal();
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> normal;
+  std::vector<std::vector<std::complex<double>>> draws;
+  Eigen::VectorXd z(nc);
+  std::vector<double> coeffs(nc);
+  for (int s = 0; s < count; ++s) {
+    for (int d = 0; d < nc; ++d) z[d] = normal(rng);
+    const Eigen::VectorXd delta = root * z;
+    for (int d = 0; d < nc; ++d) coeffs[d] = coeffs_[d] + delta[d];
+    draws.push_back(Evaluate(x_atomic, lambda_nm, coeffs.data()));
+  }
+  return draws;
+}
+
+std::vector<PhysicalParameterValue> PhysicalModel::ParameterValues(double x_atomic) const {
+  const int np = layout_.num_parameters();
+  const int nc = layout_.num_coefficients();
+  const std::vector<double> values = Values(x_atomic, coeffs_.data());
+  std::vector<double> sigma(np, 0.0);
+  if (!covariance_.empty()) {
+    // d value / d coefficient by central differences (the maps are smooth).
+    Eigen::MatrixXd jac(np, nc);
+    std::vector<double> c = coeffs_;
+    for (int j = 0; j < nc; ++j) {
+      const double h = 1e-6 * std::max(1.0, std::abs(coeffs_[j]));
+      c[j] = coeffs_[j] + h;
+      const std::vector<double> plus = Values(x_atomic, c.data());
+      c[j] = coeffs_[j] - h;
+      const std::vector<double> minus = Values(x_atomic, c.data());
+      c[j] = coeffs_[j];
+      for (int k = 0; k < np; ++k) jac(k, j) = (plus[k] - minus[k]) / (2 * h);
+    }
+    Eigen::Map<const Eigen::MatrixXd> cov(covariance_.data(), nc, nc);
+    const Eigen::MatrixXd pc = jac * cov * jac.transpose();
+    for (int k = 0; k < np; ++k) sigma[k] = std::sqrt(std::max(0.0, pc(k, k)));
+  }
+  std::vector<PhysicalParameterValue> out;
+  for (int k = 0; k < np; ++k) {
+    const PhysicalParameter& p = layout_.parameters()[k];
+    out.push_back({p.term, p.kind, p.name, values[k], sigma[k]});
+  }
+  return out;
+}
+
+nlohmann::json PhysicalModel::ParametersJson() const {
+  const int nb = layout_.basis_size();
+  const int nc = layout_.num_coefficients();
+  nlohmann::json p;
+  p["form"] =
+      "eps(w, x) = eps_inf - wp^2 / (w (w + i gamma)) + sum of interband terms "
+      "(alloycolor/model/physical_model.h), w in eV";
+  p["basis"] = "legendre(u), u = 2 (x - x_range[0]) / (x_range[1] - x_range[0]) - 1";
+  p["value"] = "each parameter = map(r), r(x) = sum_d coefficients[d] P_d(u); "
+               "pos(r) = (r + sqrt(r^2 + s^2)) / 2";
+  p["positive_part_scale"] = kPhysicalPositiveScale;
+  p["degree"] = layout_.degree();
+  nlohmann::json terms = nlohmann::json::array();
+  for (int t = 0; t < layout_.num_terms(); ++t) {
+    nlohmann::json list = nlohmann::json::array();
+    for (int k = 0; k < layout_.num_parameters(); ++k) {
+      const PhysicalParameter& spec = layout_.parameters()[k];
+      if (spec.term != t) continue;
+      std::vector<double> c(coeffs_.begin() + k * nb, coeffs_.begin() + (k + 1) * nb);
+      nlohmann::json entry = {{"name", spec.name}, {"map", MapText(layout_, spec)},
+                              {"coefficients", c}};
+      if (!covariance_.empty()) {
+        std::vector<double> sigma(nb);
+        for (int d = 0; d < nb; ++d) {
+          const int i = k * nb + d;
+          sigma[d] = std::sqrt(std::max(0.0, covariance_[static_cast<size_t>(i) * nc + i]));
+        }
+        entry["coefficient_sigma"] = sigma;
+      }
+      list.push_back(entry);
+    }
+    terms.push_back({{"kind", TermKindName(layout_.term_kind(t))}, {"parameters", list}});
+  }
+  p["terms"] = terms;
+  if (!covariance_.empty()) {
+    p["covariance_layout"] =
+        "row-major over all coefficients, terms and parameters in order, d = 0..degree";
+    p["covariance"] = covariance_;
+  }
+  return p;
+}
+
+}  // namespace alloycolor

@@ -52,14 +52,14 @@ void Run(const ChartOptions& o) {
   }
   const render::Colorimeter colorimeter = LoadColorimeter(o.illuminant, o.observer);
   const auto model = o.source.Load(o.quiet);
-  const double from = o.from_text.empty() ? model->x_min()
-                                          : CompositionArg(o.from_text, "--from", model->system());
+  const double from =
+      o.from_text.empty() ? model->x_min() : CompositionArg(o.from_text, "--from", model->system());
   const double to =
       o.to_text.empty() ? model->x_max() : CompositionArg(o.to_text, "--to", model->system());
   CheckComposition(*model, from, o.source.extrapolate);
   CheckComposition(*model, to, o.source.extrapolate);
-  const bool weight = o.labels.empty() ? model->composition() == "weight_fraction_a"
-                                       : o.labels == "weight";
+  const bool weight =
+      o.labels.empty() ? model->composition() == "weight_fraction_a" : o.labels == "weight";
   const CompositionChart chart =
       ComputeChart(*model, colorimeter, from, to, o.steps, o.angle_deg, weight);
   if (ext == ".svg") {
@@ -78,8 +78,8 @@ void Run(const ChartOptions& o) {
                     {"Description", chart.method + " model; " + chart.illuminant + ", " +
                                         std::to_string(chart.observer_deg) +
                                         "-degree observer; swatches left to right at atomic "
-                                        "fraction of " + chart.element_a + ": " +
-                                        compositions},
+                                        "fraction of " +
+                                        chart.element_a + ": " + compositions},
                     {"Software", "alloycolor " ALLOYCOLOR_VERSION}});
   if (!o.quiet) std::cerr << "alloycolor: wrote " << o.out << "\n";
 }
@@ -108,8 +108,7 @@ void RegisterChart(CLI::App& app) {
   cmd->add_option("--labels", o->labels,
                   "Label compositions in atomic or weight percent (default: as the data "
                   "set's manifest)");
-  cmd->add_option("--out", o->out, "Chart file: .svg or .png (written atomically)")
-      ->required();
+  cmd->add_option("--out", o->out, "Chart file: .svg or .png (written atomically)")->required();
   cmd->add_flag("--quiet", o->quiet, "No warnings or progress on stderr");
   cmd->callback([o]() { Run(*o); });
 }

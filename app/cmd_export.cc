@@ -1,6 +1,7 @@
 // alloycolor export: n and k of a metal (measured, --nk) or of an alloy at one composition
 // as the spectrum files and material definitions pbrt-v4 and Mitsuba 3 read for conductors.
 #include <cstdio>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -38,11 +39,21 @@ std::string Identifier(const std::string& text) {
   return id;
 }
 
+// Refuses an output path whose folder does not exist before any work is done.
+void CheckOutputFolder(const std::string& path, const std::string& option) {
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  std::error_code ec;
+  if (!folder.empty() && !std::filesystem::is_directory(folder, ec)) {
+    throw Error(option + ": folder '" + folder.string() + "' does not exist");
+  }
+}
+
 void Run(const ExportOptions& o) {
   if (o.format != "spd") {
     throw Error("--format: unknown format '" + o.format + "' (spd: pbrt-v4 and Mitsuba 3)");
   }
   if (o.out.empty()) throw Error("--out: give a file name prefix");
+  CheckOutputFolder(o.out, "--out");
   render::ConductorSpectra spectra;
   std::string id;
   if (!o.nk_file.empty()) {
@@ -69,9 +80,9 @@ void Run(const ExportOptions& o) {
     CheckComposition(*model, x, o.source.extrapolate);
     const AlloySystem& system = model->system();
     const std::string material =
-        system.Name() + " at x = " + Format("%.6g", x) + " (atomic fraction of " +
-        system.a.symbol + "; " + Format("%.4g", 100.0 * WeightFromAtomicFraction(x, system)) +
-        " wt% " + system.a.symbol + "), " + model->method() + " model " +
+        system.Name() + " at x = " + Format("%.6g", x) + " (atomic fraction of " + system.a.symbol +
+        "; " + Format("%.4g", 100.0 * WeightFromAtomicFraction(x, system)) + " wt% " +
+        system.a.symbol + "), " + model->method() + " model " +
         (o.source.model_path.empty() ? "built from data " + o.source.data_dir
                                      : "from " + o.source.model_path);
     spectra = render::ModelSpectra(*model, x, material);
@@ -103,7 +114,8 @@ void RegisterExport(CLI::App& app) {
       "export",
       "Spectra of n and k for renderers: PREFIX.eta.spd and PREFIX.k.spd (wavelength_nm "
       "value per line, 360-830 nm at least, at the model's or file's own wavelengths, "
-      "17 significant digits; end values held where the data stop short of 360 or 830 nm, "
+      "digits enough to read back the exact doubles; end values held where the data stop short of "
+      "360 or 830 nm, "
       "as the comment lines say), PREFIX.pbrt (pbrt-v4 conductor material) and PREFIX.xml "
       "(Mitsuba 3 conductor bsdf), from measured n, k (--nk FILE) or an alloy at one "
       "composition --x (--model or --data).");
@@ -113,8 +125,9 @@ void RegisterExport(CLI::App& app) {
   cmd->add_option("--x", o->x_text,
                   "Composition of the system's first element: 0.75, 75at%, 75wt%, 18k");
   cmd->add_option("--format", o->format, "spd (pbrt-v4 and Mitsuba 3)")->capture_default_str();
-  cmd->add_option("--out", o->out, "Output prefix: writes PREFIX.eta.spd, PREFIX.k.spd, "
-                                   "PREFIX.pbrt, PREFIX.xml")
+  cmd->add_option("--out", o->out,
+                  "Output prefix: writes PREFIX.eta.spd, PREFIX.k.spd, "
+                  "PREFIX.pbrt, PREFIX.xml")
       ->required();
   cmd->add_flag("--quiet", o->quiet, "No warnings or progress on stderr");
   cmd->callback([o]() { Run(*o); });

@@ -7,6 +7,7 @@
 #include <iostream>
 #include <map>
 
+#include "alloycolor/fit/physical_fit.h"
 #include "alloycolor/fit/smooth_fit.h"
 #include "alloycolor/model/error.h"
 #include "alloycolor/model/io.h"
@@ -21,6 +22,7 @@ struct FitOptions {
   std::string data_dir;
   std::string exclude_text;
   std::string method = "smooth";
+  std::string terms = "auto";
   std::string out;
   std::string from;
   int degree = -1;
@@ -141,6 +143,26 @@ void Run(const FitOptions& o, CLI::App* cmd) {
       options.progress = [](const std::string& m) { std::cerr << "alloycolor: " << m << "\n"; };
     }
     model = std::move(fit::FitSmooth(dataset, options).model);
+  } else if (o.method == "physical") {
+    fit::PhysicalFitOptions options;
+    if (o.degree >= 0) options.degree = o.degree;
+    options.terms = o.terms;
+    options.covariance = !o.no_covariance;
+    if (cmd->count("--lambda-from") || cmd->count("--lambda-to")) {
+      if (!(o.lambda_from > 0) || !(o.lambda_to > o.lambda_from)) {
+        throw Error("--lambda-from/--lambda-to: need 0 < from < to");
+      }
+      options.lambda_from_nm = o.lambda_from;
+      options.lambda_to_nm = o.lambda_to;
+    }
+    if (cmd->count("--lambda-step")) {
+      if (!(o.lambda_step > 0)) throw Error("--lambda-step: need a positive step");
+      options.lambda_step_nm = o.lambda_step;
+    }
+    if (!o.quiet) {
+      options.progress = [](const std::string& m) { std::cerr << "alloycolor: " << m << "\n"; };
+    }
+    model = std::move(fit::FitPhysical(dataset, options).model);
   } else {
     model = BuildModel(o.method, dataset, o.quiet);
   }
@@ -172,28 +194,43 @@ void RegisterFit(CLI::App& app) {
       "Fit a model to all samples of a data set and write it as a versioned JSON model "
       "file (docs/model-format.md). smooth: Ceres fit of tau and m* as smooth functions of "
       "composition at every wavelength, degree by leave-one-out cross-validation, with "
-      "covariance. paper, eps-linear: the baselines (they keep the samples' data).");
+      "covariance. physical: Ceres fit of a Drude + interband model (eps_inf, wp, gamma, "
+      "Lorentz / critical-point / Rioux terms) whose parameters are polynomials in "
+      "composition, to all samples at once, with covariance. paper, eps-linear: the "
+      "baselines (they keep the samples' data).");
   cmd->add_option("--data", o->data_dir,
                   "Data set: folder with dataset.json, a manifest, or a bundled set's name")
       ->required();
   cmd->add_option("--exclude", o->exclude_text,
                   "Leave out the samples at these compositions (comma-separated)");
-  cmd->add_option("--method", o->method, "smooth, paper or eps-linear")->capture_default_str();
+  cmd->add_option("--method", o->method, "smooth, physical, paper or eps-linear")
+      ->capture_default_str();
   cmd->add_option("--out", o->out, "Model file to write (written atomically)")->required();
   cmd->add_option("--from", o->from,
                   "Refit: start from this earlier model and report what changed");
   cmd->add_option("--degree", o->degree,
-                  "smooth: polynomial degree in composition (default: cross-validated)");
+                  "smooth: polynomial degree in composition (default: cross-validated); "
+                  "physical: degree of every parameter's polynomial (default 2)");
+  cmd->add_option("--terms", o->terms,
+                  "physical: interband terms, comma-separated: lorentz, cp (Etchegoin 2006 "
+                  "critical point), rioux-gap, rioux-edge (Rioux 2014); none for the Drude "
+                  "term alone; auto: none for infrared data, else the best of "
+                  "rioux-gap,rioux-edge / cp,cp / lorentz,lorentz,lorentz on the end samples")
+      ->capture_default_str();
   cmd->add_option("--max-degree", o->max_degree, "smooth: largest degree cross-validation tries")
       ->capture_default_str();
   cmd->add_option("--smoothing", o->smoothing,
                   "smooth: weight of the curvature penalty across wavelength")
       ->capture_default_str();
-  cmd->add_option("--lambda-from", o->lambda_from, "smooth: first wavelength of the fit grid, nm");
-  cmd->add_option("--lambda-to", o->lambda_to, "smooth: last wavelength of the fit grid, nm");
-  cmd->add_option("--lambda-step", o->lambda_step, "smooth: grid step, nm")
+  cmd->add_option("--lambda-from", o->lambda_from,
+                  "smooth, physical: first wavelength of the fit grid, nm (physical default: "
+                  "the common range within 300-1000 nm, or all of it for infrared data)");
+  cmd->add_option("--lambda-to", o->lambda_to, "smooth, physical: last wavelength of the fit grid, nm");
+  cmd->add_option("--lambda-step", o->lambda_step,
+                  "smooth, physical: grid step, nm (physical default: 5, or range/200 in the "
+                  "infrared)")
       ->capture_default_str();
-  cmd->add_flag("--no-covariance", o->no_covariance, "smooth: skip the covariance");
+  cmd->add_flag("--no-covariance", o->no_covariance, "smooth, physical: skip the covariance");
   cmd->add_flag("--quiet", o->quiet, "No progress or warnings on stderr");
   cmd->callback([o, cmd]() { Run(*o, cmd); });
 }

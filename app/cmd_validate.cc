@@ -158,8 +158,7 @@ void PrintSummary(const nlohmann::json& report) {
     std::printf("\n");
   }
   if (!report["delta_e00_available"].get<bool>()) {
-    std::printf("delta_e00: %s\n",
-                report["metric_ranges"]["delta_e00"].get<std::string>().c_str());
+    std::printf("delta_e00: %s\n", report["metric_ranges"]["delta_e00"].get<std::string>().c_str());
   }
 }
 

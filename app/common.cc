@@ -8,6 +8,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "alloycolor/fit/physical_fit.h"
 #include "alloycolor/fit/smooth_fit.h"
 #include "alloycolor/model/error.h"
 #include "alloycolor/model/io.h"
@@ -94,7 +95,14 @@ std::unique_ptr<AlloyModel> BuildModel(const std::string& method, const Dataset&
     }
     return std::move(fit::FitSmooth(dataset, options).model);
   }
-  throw Error("unknown method '" + method + "' (paper, eps-linear, smooth)");
+  if (method == "physical") {
+    fit::PhysicalFitOptions options;
+    if (!quiet) {
+      options.progress = [](const std::string& m) { std::cerr << "alloycolor: " << m << "\n"; };
+    }
+    return std::move(fit::FitPhysical(dataset, options).model);
+  }
+  throw Error("unknown method '" + method + "' (paper, eps-linear, smooth, physical)");
 }
 
 void WriteOutput(const std::string& path, const std::string& contents, bool quiet) {

@@ -65,6 +65,8 @@ void RegisterRender(CLI::App& app);
 void RegisterExport(CLI::App& app);
 void RegisterValidate(CLI::App& app);
 void RegisterChart(CLI::App& app);
+void RegisterParams(CLI::App& app);
+void RegisterSweep(CLI::App& app);
 
 }  // namespace alloycolor::app
 

@@ -26,6 +26,8 @@ int main(int argc, char** argv) {
   alloycolor::app::RegisterExport(app);
   alloycolor::app::RegisterValidate(app);
   alloycolor::app::RegisterChart(app);
+  alloycolor::app::RegisterParams(app);
+  alloycolor::app::RegisterSweep(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

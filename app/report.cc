@@ -8,6 +8,7 @@
 #include <memory>
 #include <set>
 #include <sstream>
+#include <utility>
 
 #include "alloycolor/model/composition.h"
 #include "alloycolor/model/error.h"
@@ -76,8 +77,7 @@ std::vector<std::complex<double>> MeasuredIndex(const NkSpectrum& nk,
 // `alloycolor predict` writes by default, integrated as `alloycolor color --nk` would.
 std::vector<std::complex<double>> PredictedColourIndex(const render::Colorimeter& colorimeter,
                                                        const AlloyModel& model, double x) {
-  if (model.lambda_min_nm() > kVisibleLoNm + 1e-9 ||
-      model.lambda_max_nm() < kVisibleHiNm - 1e-9) {
+  if (model.lambda_min_nm() > kVisibleLoNm + 1e-9 || model.lambda_max_nm() < kVisibleHiNm - 1e-9) {
     // Throws the standard message naming the model's range.
     render::EvaluationGrid(colorimeter, model.lambda_min_nm(), model.lambda_max_nm(),
                            "the " + model.method() + " model");
@@ -97,8 +97,8 @@ Colour ColourAtAngles(const render::Colorimeter& colorimeter,
                       const std::vector<double>& angles_deg) {
   Colour c;
   for (double angle : angles_deg) {
-    const render::ColorResult r = render::ColorFromXYZ(
-        colorimeter, render::MaterialXYZ(colorimeter, index, angle));
+    const render::ColorResult r =
+        render::ColorFromXYZ(colorimeter, render::MaterialXYZ(colorimeter, index, angle));
     c.lab.push_back(r.lab);
     c.srgb8.push_back(r.srgb8);
   }
@@ -141,8 +141,8 @@ std::vector<double> DrudeWavelengths(double lo, double hi) {
 }
 
 // tau_fs, m*/m_e of a measured spectrum at lambda by eq. 11, 12; NaN where undefined.
-void MeasuredTauMass(const NkSpectrum& nk, double x, double lambda_nm,
-                     const AlloySystem& system, double* tau_fs, double* mass) {
+void MeasuredTauMass(const NkSpectrum& nk, double x, double lambda_nm, const AlloySystem& system,
+                     double* tau_fs, double* mass) {
   *tau_fs = *mass = kNaN;
   if (lambda_nm < nk.lambda_min_nm() || lambda_nm > nk.lambda_max_nm()) return;
   const std::complex<double> i = NkAt(nk, lambda_nm);
@@ -153,8 +153,8 @@ void MeasuredTauMass(const NkSpectrum& nk, double x, double lambda_nm,
   *mass = kPlasmaEv2M3 * FreeElectronDensityM3(x, system) / p.wp2_ev2;
 }
 
-void FillDrudeCurves(const AlloyModel& model, const std::string& method,
-                     const AlloySystem& system, std::vector<DrudeCurve>* curves) {
+void FillDrudeCurves(const AlloyModel& model, const std::string& method, const AlloySystem& system,
+                     std::vector<DrudeCurve>* curves) {
   const auto* sample_model = dynamic_cast<const SampleModel*>(&model);
   const bool paper = sample_model != nullptr && model.method() == "paper";
   for (DrudeCurve& curve : *curves) {
@@ -304,9 +304,8 @@ ValidationReport ComputeValidation(const Dataset& dataset,
       h.path = sample.path;
       h.split = static_cast<int>(s);
       try {
-        const Colour c =
-            ColourAtAngles(colorimeter, render::IndexOnGrid(colorimeter, sample.nk),
-                           options.angles_deg);
+        const Colour c = ColourAtAngles(colorimeter, render::IndexOnGrid(colorimeter, sample.nk),
+                                        options.angles_deg);
         h.lab = c.lab;
         h.srgb8 = c.srgb8;
       } catch (const Error& e) {
@@ -318,27 +317,44 @@ ValidationReport ComputeValidation(const Dataset& dataset,
 
   const int total = static_cast<int>(options.methods.size() * splits.size());
   int step = 0;
+  using Key = std::pair<std::string, size_t>;  // method, split
+  std::map<Key, std::unique_ptr<AlloyModel>> built;
+  std::map<Key, std::string> failed;
+  const auto build = [&](const std::string& method, size_t s) -> const AlloyModel* {
+    const Key key{method, s};
+    if (built.count(key)) return built[key].get();
+    if (failed.count(key)) return nullptr;
+    const SplitResult& split = report.splits[s];
+    ++step;
+    if (progress) {
+      progress("validate [" + std::to_string(step) + "/" + std::to_string(total) + "] " + method +
+               ": training on " + std::to_string(split.train_x.size()) +
+               " samples, holding out x = " + XList(split.holdout_x));
+    }
+    try {
+      built[key] = BuildModel(method, WithoutSamples(dataset, split.holdout_x), /*quiet=*/true);
+      return built[key].get();
+    } catch (const Error& e) {
+      failed[key] = e.what();
+      if (progress) progress("validate: " + method + " failed: " + e.what());
+      return nullptr;
+    }
+  };
+  // First, every method until it builds on some split: a method that builds on none (an
+  // unknown name, say) is refused before the long work.
   for (const std::string& method : options.methods) {
-    std::string first_error;
-    bool any_built = false;
+    bool any = false;
+    for (size_t s = 0; s < report.splits.size() && !any; ++s) any = build(method, s) != nullptr;
+    if (!any) throw Error(failed[{method, 0}]);
+  }
+  for (const std::string& method : options.methods) {
     for (size_t s = 0; s < report.splits.size(); ++s) {
       SplitResult& split = report.splits[s];
-      ++step;
-      if (progress) {
-        progress("validate [" + std::to_string(step) + "/" + std::to_string(total) + "] " +
-                 method + ": training on " + std::to_string(split.train_x.size()) +
-                 " samples, holding out x = " + XList(split.holdout_x));
-      }
-      std::unique_ptr<AlloyModel> model;
-      try {
-        model = BuildModel(method, WithoutSamples(dataset, split.holdout_x), /*quiet=*/true);
-      } catch (const Error& e) {
-        split.errors[method] = e.what();
-        if (first_error.empty()) first_error = e.what();
-        if (progress) progress("validate: " + method + " failed: " + e.what());
+      const AlloyModel* model = build(method, s);
+      if (model == nullptr) {
+        split.errors[method] = failed[{method, s}];
         continue;
       }
-      any_built = true;
       split.warnings[method] = model->warnings();
       FillDrudeCurves(*model, method, dataset.system, &split.drude);
       for (HoldoutResult& h : report.holdouts) {
@@ -350,8 +366,8 @@ ValidationReport ComputeValidation(const Dataset& dataset,
           h.results[method].error = e.what();
         }
       }
+      built.erase({method, s});
     }
-    if (!any_built) throw Error(first_error);
   }
   return report;
 }
@@ -455,8 +471,7 @@ struct SigmaSummary {
   double median_ratio = kNaN;
 };
 
-SigmaSummary SummariseSigma(const ValidationReport& report, const std::string& method,
-                            int angle) {
+SigmaSummary SummariseSigma(const ValidationReport& report, const std::string& method, int angle) {
   SigmaSummary s;
   std::vector<double> ratios;
   for (const HoldoutResult& h : report.holdouts) {
@@ -501,8 +516,7 @@ nlohmann::json HexByAngle(const std::vector<double>& angles,
   return out;
 }
 
-nlohmann::json LabByAngle(const std::vector<double>& angles,
-                          const std::vector<render::Lab>& labs) {
+nlohmann::json LabByAngle(const std::vector<double>& angles, const std::vector<render::Lab>& labs) {
   if (labs.empty()) return nullptr;
   nlohmann::json out = nlohmann::json::object();
   for (size_t a = 0; a < angles.size() && a < labs.size(); ++a) {
@@ -512,9 +526,8 @@ nlohmann::json LabByAngle(const std::vector<double>& angles,
 }
 
 std::string ColourRangeText(const ValidationReport& report) {
-  return "the colorimeter's grid " + Num(report.colour_nm[0]) + "-" +
-         Num(report.colour_nm[1]) + " nm (" + report.illuminant + ", " +
-         std::to_string(report.observer_deg) +
+  return "the colorimeter's grid " + Num(report.colour_nm[0]) + "-" + Num(report.colour_nm[1]) +
+         " nm (" + report.illuminant + ", " + std::to_string(report.observer_deg) +
          "-degree observer); the prediction evaluated on 380-780 nm as `alloycolor predict` "
          "writes it, the measured file on its own range, each held at its ends";
 }
@@ -523,20 +536,19 @@ std::string ColourRangeText(const ValidationReport& report) {
 
 nlohmann::json ValidationJson(const ValidationReport& report) {
   const bool colour = AnyColour(report);
-  nlohmann::json doc = {
-      {"format", "alloycolor-validation"},
-      {"version", 1},
-      {"generator", "alloycolor " ALLOYCOLOR_VERSION},
-      {"data", report.data},
-      {"name", report.name},
-      {"system", report.system},
-      {"composition", "atomic_fraction_a"},
-      {"manifest_composition", report.composition},
-      {"mode", report.mode},
-      {"methods", report.methods},
-      {"angles_deg", report.angles_deg},
-      {"illuminant", report.illuminant},
-      {"observer", report.observer_deg}};
+  nlohmann::json doc = {{"format", "alloycolor-validation"},
+                        {"version", 1},
+                        {"generator", "alloycolor " ALLOYCOLOR_VERSION},
+                        {"data", report.data},
+                        {"name", report.name},
+                        {"system", report.system},
+                        {"composition", "atomic_fraction_a"},
+                        {"manifest_composition", report.composition},
+                        {"mode", report.mode},
+                        {"methods", report.methods},
+                        {"angles_deg", report.angles_deg},
+                        {"illuminant", report.illuminant},
+                        {"observer", report.observer_deg}};
   std::string no_colour;
   for (const HoldoutResult& h : report.holdouts) {
     if (no_colour.empty() && !h.colour_note.empty()) no_colour = h.colour_note;
@@ -560,9 +572,10 @@ nlohmann::json ValidationJson(const ValidationReport& report) {
         for (double x : v) a.push_back(OrNull(x));
         return a;
       };
-      curve["train"] = {{"x", c.train_x}, {"tau_fs", nulls(c.train_tau_fs)},
-                        {"mass_ratio", nulls(c.train_mass)}};
-      curve["holdout"] = {{"x", c.holdout_x}, {"tau_fs", nulls(c.holdout_tau_fs)},
+      curve["train"] = {
+          {"x", c.train_x}, {"tau_fs", nulls(c.train_tau_fs)}, {"mass_ratio", nulls(c.train_mass)}};
+      curve["holdout"] = {{"x", c.holdout_x},
+                          {"tau_fs", nulls(c.holdout_tau_fs)},
                           {"mass_ratio", nulls(c.holdout_mass)}};
       drude.push_back(curve);
     }
@@ -617,8 +630,8 @@ nlohmann::json ValidationJson(const ValidationReport& report) {
     nlohmann::json row = nlohmann::json::object();
     for (const std::string& method : report.methods) {
       const MetricSummary s = Summarise(report, method, metric);
-      row[method] = {{"count", s.count}, {"mean", OrNull(s.mean)}, {"max", OrNull(s.max)},
-                     {"wins", s.wins}};
+      row[method] = {
+          {"count", s.count}, {"mean", OrNull(s.mean)}, {"max", OrNull(s.max)}, {"wins", s.wins}};
     }
     summary[metric.key] = row;
   }
@@ -649,12 +662,23 @@ std::string Escape(const std::string& text) {
   std::string out;
   for (char c : text) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&#39;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&#39;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -716,8 +740,8 @@ std::string SvgPlot(const PlotSpec& spec) {
   }
   std::ostringstream svg;
   svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" class=\"plot\" width=\"" << spec.width
-      << "\" height=\"" << spec.height << "\" viewBox=\"0 0 " << spec.width << " "
-      << spec.height << "\" role=\"img\" aria-label=\"" << Escape(spec.title) << "\">";
+      << "\" height=\"" << spec.height << "\" viewBox=\"0 0 " << spec.width << " " << spec.height
+      << "\" role=\"img\" aria-label=\"" << Escape(spec.title) << "\">";
   svg << "<rect width=\"100%\" height=\"100%\" fill=\"#fff\"/>";
   svg << "<text x=\"" << left + pw / 2 << "\" y=\"16\" text-anchor=\"middle\" "
       << "class=\"pt\">" << Escape(spec.title) << "</text>";
@@ -730,21 +754,21 @@ std::string SvgPlot(const PlotSpec& spec) {
     x_lo -= 0.5;
     x_hi += 0.5;
   }
-  const double pad = y_hi - y_lo < 1e-12 ? std::max(std::abs(y_hi) * 0.05, 1e-3)
-                                          : (y_hi - y_lo) * 0.06;
+  const double pad =
+      y_hi - y_lo < 1e-12 ? std::max(std::abs(y_hi) * 0.05, 1e-3) : (y_hi - y_lo) * 0.06;
   y_lo -= pad;
   y_hi += pad;
   const auto px = [&](double x) { return left + (x - x_lo) / (x_hi - x_lo) * pw; };
   const auto py = [&](double y) { return top + (y_hi - y) / (y_hi - y_lo) * ph; };
   svg << "<defs><clipPath id=\"" << spec.id << "\"><rect x=\"" << left << "\" y=\"" << top
       << "\" width=\"" << pw << "\" height=\"" << ph << "\"/></clipPath></defs>";
-  svg << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << pw << "\" height=\""
-      << ph << "\" fill=\"none\" stroke=\"#999\"/>";
+  svg << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << pw << "\" height=\"" << ph
+      << "\" fill=\"none\" stroke=\"#999\"/>";
   char buf[64];
   for (double t : NiceTicks(x_lo, x_hi, 5)) {
     std::snprintf(buf, sizeof buf, "%.1f", px(t));
-    svg << "<line x1=\"" << buf << "\" x2=\"" << buf << "\" y1=\"" << top << "\" y2=\""
-        << top + ph << "\" class=\"grid\"/><text x=\"" << buf << "\" y=\"" << top + ph + 14
+    svg << "<line x1=\"" << buf << "\" x2=\"" << buf << "\" y1=\"" << top << "\" y2=\"" << top + ph
+        << "\" class=\"grid\"/><text x=\"" << buf << "\" y=\"" << top + ph + 14
         << "\" text-anchor=\"middle\" class=\"pl\">" << Num(t, "%.6g") << "</text>";
   }
   for (double t : NiceTicks(y_lo, y_hi, 5)) {
@@ -763,10 +787,9 @@ std::string SvgPlot(const PlotSpec& spec) {
       std::string points;
       const auto flush = [&]() {
         if (points.find(' ') != std::string::npos) {
-          svg << "<polyline fill=\"none\" stroke=\"" << s.colour << "\" stroke-width=\""
-              << s.width << "\"" << (s.dash.empty() ? "" : " stroke-dasharray=\"" + s.dash + "\"")
-              << " points=\"" << points << "\"><title>" << Escape(s.label)
-              << "</title></polyline>";
+          svg << "<polyline fill=\"none\" stroke=\"" << s.colour << "\" stroke-width=\"" << s.width
+              << "\"" << (s.dash.empty() ? "" : " stroke-dasharray=\"" + s.dash + "\"")
+              << " points=\"" << points << "\"><title>" << Escape(s.label) << "</title></polyline>";
         }
         points.clear();
       };
@@ -786,9 +809,8 @@ std::string SvgPlot(const PlotSpec& spec) {
         if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
         std::snprintf(buf, sizeof buf, "cx=\"%.1f\" cy=\"%.1f\"", px(s.x[i]), py(s.y[i]));
         svg << "<circle " << buf << " r=\"3.5\" fill=\"" << (s.hollow ? "#fff" : s.colour)
-            << "\" stroke=\"" << s.colour << "\" stroke-width=\"1.5\"><title>"
-            << Escape(s.label) << ": " << Num(s.x[i], "%.4g") << ", " << Num(s.y[i], "%.4g")
-            << "</title></circle>";
+            << "\" stroke=\"" << s.colour << "\" stroke-width=\"1.5\"><title>" << Escape(s.label)
+            << ": " << Num(s.x[i], "%.4g") << ", " << Num(s.y[i], "%.4g") << "</title></circle>";
       }
     }
   }
@@ -797,8 +819,8 @@ std::string SvgPlot(const PlotSpec& spec) {
 }
 
 std::string Swatch(const std::array<std::uint8_t, 3>& srgb8, const std::string& caption) {
-  return "<div class=\"sw\"><div class=\"chip\" style=\"background:" +
-         render::HexColor(srgb8) + "\"></div><div class=\"cap\">" + caption + "</div></div>";
+  return "<div class=\"sw\"><div class=\"chip\" style=\"background:" + render::HexColor(srgb8) +
+         "\"></div><div class=\"cap\">" + caption + "</div></div>";
 }
 
 std::string Legend(const ValidationReport& report, bool drude) {
@@ -870,9 +892,9 @@ void WriteVerdict(const ValidationReport& report, std::ostringstream& html) {
          << "</b>";
     for (size_t i = 0; i < ranked.size(); ++i) {
       const MetricSummary& s = sums[ranked[i].second];
-      html << (i == 0 ? " (" : "; ") << (i == 0 ? "" : Escape(ranked[i].second) + " ")
-           << "mean " << Num(s.mean, metric.format) << ", max " << Num(s.max, metric.format)
-           << ", best on " << s.wins << " of " << s.count;
+      html << (i == 0 ? " (" : "; ") << (i == 0 ? "" : Escape(ranked[i].second) + " ") << "mean "
+           << Num(s.mean, metric.format) << ", max " << Num(s.max, metric.format) << ", best on "
+           << s.wins << " of " << s.count;
     }
     html << ")</li>";
   }
@@ -921,8 +943,8 @@ void WriteHonesty(const ValidationReport& report, std::ostringstream& html) {
         verdict = "<span class=\"bad\">too small: errors are typically " +
                   Num(s.median_ratio, "%.1f") + "&times; the predicted sigma</span>";
       } else if (s.median_ratio < 0.3) {
-        verdict = "too large (over-cautious): errors are typically " +
-                  Num(s.median_ratio, "%.2g") + "&times; the predicted sigma";
+        verdict = "too large (over-cautious): errors are typically " + Num(s.median_ratio, "%.2g") +
+                  "&times; the predicted sigma";
       } else {
         verdict = "about right";
       }
@@ -1002,8 +1024,7 @@ void WriteDrude(const ValidationReport& report, const SplitResult& split, int sp
 
 void WriteHoldout(const ValidationReport& report, const HoldoutResult& h, int index,
                   std::ostringstream& html) {
-  html << "<h4>Held out: " << XLabel(report, h) << " &mdash; " << Escape(h.file)
-       << "</h4>";
+  html << "<h4>Held out: " << XLabel(report, h) << " &mdash; " << Escape(h.file) << "</h4>";
   // Swatches.
   if (!h.srgb8.empty()) {
     for (size_t a = 0; a < report.angles_deg.size(); ++a) {
@@ -1051,8 +1072,7 @@ void WriteHoldout(const ValidationReport& report, const HoldoutResult& h, int in
     if (r && !r->error.empty()) note = r->error;
     if (!h.srgb8.empty()) {
       for (size_t a = 0; a < report.angles_deg.size(); ++a) {
-        html << MetricCell(r && a < r->delta_e00.size() ? r->delta_e00[a] : kNaN, "%.2f",
-                           false);
+        html << MetricCell(r && a < r->delta_e00.size() ? r->delta_e00[a] : kNaN, "%.2f", false);
       }
       std::string sigmas;
       for (size_t a = 0; r && a < r->delta_e00_sigma.size(); ++a) {
@@ -1116,12 +1136,13 @@ std::string ValidationHtml(const ValidationReport& report) {
   for (size_t i = 0; i < report.methods.size(); ++i) {
     html << (i ? ", " : "") << Escape(report.methods[i]);
   }
-  html << ". " << (report.mode == "loo" ? "Leave-one-out: each interior sample held out in "
-                                          "turn, every method refitted without it."
-                                        : "Held out: the given compositions, every method "
-                                          "refitted without them.")
-       << "<br>Colour: illuminant " << Escape(report.illuminant) << ", "
-       << report.observer_deg << "&deg; observer, incidence ";
+  html << ". "
+       << (report.mode == "loo" ? "Leave-one-out: each interior sample held out in "
+                                  "turn, every method refitted without it."
+                                : "Held out: the given compositions, every method "
+                                  "refitted without them.")
+       << "<br>Colour: illuminant " << Escape(report.illuminant) << ", " << report.observer_deg
+       << "&deg; observer, incidence ";
   for (size_t a = 0; a < report.angles_deg.size(); ++a) {
     html << (a ? ", " : "") << Num(report.angles_deg[a]) << "&deg;";
   }
@@ -1141,8 +1162,8 @@ std::string ValidationHtml(const ValidationReport& report) {
     for (const HoldoutResult& h : report.holdouts) {
       if (why.empty()) why = h.colour_note;
     }
-    html << "<li class=\"note\">&Delta;E<sub>00</sub> is <b>not available</b>: "
-         << Escape(why) << ". The data carry no colour; n, k and reflectance are compared over "
+    html << "<li class=\"note\">&Delta;E<sub>00</sub> is <b>not available</b>: " << Escape(why)
+         << ". The data carry no colour; n, k and reflectance are compared over "
             "the data's own wavelengths.</li>";
   }
   std::set<std::string> ranges;
@@ -1155,8 +1176,8 @@ std::string ValidationHtml(const ValidationReport& report) {
   for (const std::string& r : ranges) html << (i++ ? "; " : "") << Escape(r);
   html << ".</li></ul>";
   if (!report.dataset_warnings.empty()) {
-    html << "<details><summary class=\"meta\">Data set warnings ("
-         << report.dataset_warnings.size() << ")</summary><ul class=\"meta\">";
+    html << "<details><summary class=\"meta\">Data set warnings (" << report.dataset_warnings.size()
+         << ")</summary><ul class=\"meta\">";
     for (const std::string& w : report.dataset_warnings) html << "<li>" << Escape(w) << "</li>";
     html << "</ul></details>";
   }
@@ -1169,16 +1190,16 @@ std::string ValidationHtml(const ValidationReport& report) {
   int holdout_index = 0;
   for (size_t s = 0; s < report.splits.size(); ++s) {
     const SplitResult& split = report.splits[s];
-    html << "<h3>Trained on x = " << XList(split.train_x) << "; held out x = "
-         << XList(split.holdout_x) << "</h3>";
+    html << "<h3>Trained on x = " << XList(split.train_x)
+         << "; held out x = " << XList(split.holdout_x) << "</h3>";
     for (const auto& [method, error] : split.errors) {
-      html << "<p class=\"note\">" << Escape(method) << " could not be built: "
-           << Escape(error) << "</p>";
+      html << "<p class=\"note\">" << Escape(method) << " could not be built: " << Escape(error)
+           << "</p>";
     }
     for (const auto& [method, warnings] : split.warnings) {
       if (warnings.empty()) continue;
-      html << "<details><summary class=\"meta\">" << Escape(method) << ": "
-           << warnings.size() << " warning(s)</summary><ul class=\"meta\">";
+      html << "<details><summary class=\"meta\">" << Escape(method) << ": " << warnings.size()
+           << " warning(s)</summary><ul class=\"meta\">";
       for (const std::string& w : warnings) html << "<li>" << Escape(w) << "</li>";
       html << "</ul></details>";
     }
@@ -1207,11 +1228,19 @@ CompositionChart ComputeChart(const AlloyModel& model, const render::Colorimeter
   chart.observer_deg = colorimeter.observer_deg();
   chart.angle_deg = angle_deg;
   chart.weight_labels = weight_labels;
+  // Evenly spaced in the unit of the labels.
+  const AlloySystem& system = model.system();
+  const double lo = weight_labels ? WeightFromAtomicFraction(x_from, system) : x_from;
+  const double hi = weight_labels ? WeightFromAtomicFraction(x_to, system) : x_to;
   for (int i = 0; i < steps; ++i) {
-    const double x = i == steps - 1 ? x_to : x_from + (x_to - x_from) * i / (steps - 1);
+    const double t = lo + (hi - lo) * i / (steps - 1);
+    const double x = i == 0           ? x_from
+                     : i == steps - 1 ? x_to
+                     : weight_labels  ? AtomicFromWeightFraction(t, system)
+                                      : t;
     const render::ColorResult c = render::ColorFromXYZ(
-        colorimeter, render::MaterialXYZ(colorimeter,
-                                         render::IndexOnGrid(colorimeter, model, x), angle_deg));
+        colorimeter,
+        render::MaterialXYZ(colorimeter, render::IndexOnGrid(colorimeter, model, x), angle_deg));
     const render::RGB& s = c.linear_srgb;
     chart.swatches.push_back({x, WeightFromAtomicFraction(x, model.system()), c.srgb8,
                               s.r < 0 || s.g < 0 || s.b < 0 || s.r > 1 || s.g > 1 || s.b > 1});
@@ -1227,7 +1256,7 @@ struct ChartLayout {
 
 ChartLayout LayoutOf(const CompositionChart& chart) {
   const int n = static_cast<int>(chart.swatches.size());
-  const int swatch = n <= 16 ? 64 : std::max(4, 1100 / n);
+  const int swatch = n <= 16 ? 64 : std::max(4, 1000 / n);
   return {swatch, n <= 16 ? 6 : std::max(1, swatch / 10), 40};
 }
 
@@ -1243,15 +1272,15 @@ std::string ChartSvg(const CompositionChart& chart) {
   // Label every k-th swatch so that labels stay at least 40 px apart, and the last.
   const int every = std::max(1, (40 + l.swatch + l.gap - 1) / (l.swatch + l.gap));
   std::ostringstream svg;
-  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\""
-      << height << "\" viewBox=\"0 0 " << width << " " << height
+  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height
+      << "\" viewBox=\"0 0 " << width << " " << height
       << "\" font-family=\"Helvetica, Arial, sans-serif\">\n";
   svg << "<rect width=\"100%\" height=\"100%\" fill=\"#fff\"/>\n";
   svg << "<text x=\"" << width / 2 << "\" y=\"20\" text-anchor=\"middle\" font-size=\"15\" "
       << "font-weight=\"bold\">" << Escape(chart.system) << ": colour by composition</text>\n";
   svg << "<text x=\"" << width / 2 << "\" y=\"37\" text-anchor=\"middle\" font-size=\"11\" "
-      << "fill=\"#555\">" << Escape(chart.method) << " model; " << Escape(chart.illuminant)
-      << ", " << chart.observer_deg << "\u00b0 observer, incidence " << Num(chart.angle_deg)
+      << "fill=\"#555\">" << Escape(chart.method) << " model; " << Escape(chart.illuminant) << ", "
+      << chart.observer_deg << "\u00b0 observer, incidence " << Num(chart.angle_deg)
       << "\u00b0; sRGB</text>\n";
   const char* unit = chart.weight_labels ? "wt%" : "at%";
   for (int i = 0; i < n; ++i) {
@@ -1260,8 +1289,8 @@ std::string ChartSvg(const CompositionChart& chart) {
     const std::string hex = render::HexColor(s.srgb8);
     svg << "<rect class=\"swatch\" x=\"" << x << "\" y=\"" << y0 << "\" width=\"" << l.swatch
         << "\" height=\"" << l.swatch << "\" fill=\"" << hex << "\" stroke=\"#777\" "
-        << "stroke-width=\"0.5\"><title>x = " << Num(s.x_atomic, "%.4g") << " (" << Num(100 * s.x_weight, "%.4g")
-        << " wt% " << Escape(chart.element_a) << "): " << hex
+        << "stroke-width=\"0.5\"><title>x = " << Num(s.x_atomic, "%.4g") << " ("
+        << Num(100 * s.x_weight, "%.4g") << " wt% " << Escape(chart.element_a) << "): " << hex
         << (s.clipped ? ", outside the sRGB gamut (clipped)" : "") << "</title></rect>\n";
     if (i % every == 0 || i == n - 1) {
       const double pct = 100 * (chart.weight_labels ? s.x_weight : s.x_atomic);
@@ -1269,8 +1298,7 @@ std::string ChartSvg(const CompositionChart& chart) {
           << "\" text-anchor=\"middle\" font-size=\"12\">" << Num(pct, "%.3g") << "</text>\n";
       if (l.swatch >= 48) {
         svg << "<text x=\"" << x + l.swatch / 2.0 << "\" y=\"" << y0 + l.swatch + 28
-            << "\" text-anchor=\"middle\" font-size=\"9\" fill=\"#777\">" << hex
-            << "</text>\n";
+            << "\" text-anchor=\"middle\" font-size=\"9\" fill=\"#777\">" << hex << "</text>\n";
       }
     }
   }
@@ -1284,8 +1312,7 @@ std::string ChartSvg(const CompositionChart& chart) {
   const std::string right = end_label(chart.swatches.back().x_atomic);
   if (!left.empty()) {
     svg << "<text x=\"" << x0 - 6 << "\" y=\"" << y0 + l.swatch / 2 + 5
-        << "\" text-anchor=\"end\" font-size=\"14\" font-weight=\"bold\">" << left
-        << "</text>\n";
+        << "\" text-anchor=\"end\" font-size=\"14\" font-weight=\"bold\">" << left << "</text>\n";
   }
   if (!right.empty()) {
     svg << "<text x=\"" << x0 + strip + 6 << "\" y=\"" << y0 + l.swatch / 2 + 5

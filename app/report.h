@@ -29,10 +29,9 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "alloycolor/model/alloy_model.h"
 #include "alloycolor/model/dataset.h"
@@ -73,7 +72,7 @@ struct HoldoutResult {
   // Measured, on the metric wavelengths (those of the first method that could be
   // evaluated; every method trained on a split shares them).
   std::vector<double> lambda_nm, n, k, reflectance;
-  std::string metric_range;  // how lambda_nm was chosen, for the report
+  std::string metric_range;                        // how lambda_nm was chosen, for the report
   std::vector<std::array<std::uint8_t, 3>> srgb8;  // per angle; empty without colour
   std::vector<render::Lab> lab;
   std::string colour_note;  // why there is no colour, when there is none
@@ -83,7 +82,7 @@ struct HoldoutResult {
 // tau and m* against composition at one wavelength, for one split.
 struct DrudeCurve {
   double lambda_nm = 0;
-  std::vector<double> x;                             // composition grid
+  std::vector<double> x;                              // composition grid
   std::map<std::string, std::vector<double>> tau_fs;  // per method; NaN where undefined
   std::map<std::string, std::vector<double>> mass;    // m*/m_e
   // Measured samples' own inversion (NaN where eq. 11, 12 are undefined).
@@ -93,7 +92,7 @@ struct DrudeCurve {
 
 struct SplitResult {
   std::vector<double> train_x, holdout_x;
-  std::map<std::string, std::string> errors;  // method -> why it could not be built
+  std::map<std::string, std::string> errors;                 // method -> why it could not be built
   std::map<std::string, std::vector<std::string>> warnings;  // method -> its warnings
   std::vector<DrudeCurve> drude;
 };
@@ -117,7 +116,8 @@ struct ValidationReport {
 
 // Runs every method on every split (each split: the compositions held out, atomic
 // fractions of samples of the data set). A method that fails on a split is recorded
-// there; a method that fails on every split throws its first error.
+// there; a method that fails on every split (an unknown name) throws its first error
+// before the other methods' long work. Progress goes to `progress` (may be empty).
 ValidationReport ComputeValidation(const Dataset& dataset,
                                    const std::vector<std::vector<double>>& splits,
                                    const render::Colorimeter& colorimeter,
@@ -152,8 +152,9 @@ struct CompositionChart {
   std::vector<ChartSwatch> swatches;
 };
 
-// Colours of the model at `steps` compositions evenly spaced from x_from to x_to
-// (atomic fractions); throws Error when the model does not cover 380-780 nm.
+// Colours of the model at `steps` compositions from x_from to x_to (atomic fractions),
+// evenly spaced in weight fraction when labelled in wt%, else in atomic fraction; throws
+// Error when the model does not cover 380-780 nm.
 CompositionChart ComputeChart(const AlloyModel& model, const render::Colorimeter& colorimeter,
                               double x_from, double x_to, int steps, double angle_deg,
                               bool weight_labels);

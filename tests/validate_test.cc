@@ -50,9 +50,9 @@ class AuAgHoldout : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     dir_ = new std::string(MakeTempDir());
-    run_ = new RunResult(RunProgram({"validate", "--data", DataDir() + "/Au-Ag", "--holdout",
-                                     "0.3,0.7", "--angles", "0,45", "--out",
-                                     *dir_ + "/report", "--quiet"}));
+    run_ = new RunResult(
+        RunProgram({"validate", "--data", DataDir() + "/Au-Ag", "--holdout", "0.3,0.7", "--angles",
+                    "0,45", "--out", *dir_ + "/report", "--quiet"}));
     if (run_->status == 0) {
       report_ = new nlohmann::json(nlohmann::json::parse(ReadText(*dir_ + "/report/report.json")));
     }
@@ -129,8 +129,8 @@ TEST_F(AuAgHoldout, DeltaE00AgreesWithPredictOutput) {
   for (const std::string method : {"paper", "eps-linear", "smooth"}) {
     SCOPED_TRACE(method);
     const std::string model = *dir_ + "/" + method + ".json";
-    const RunResult fit = RunProgram({"fit", "--data", DataDir() + "/Au-Ag", "--exclude",
-                                      "0.3,0.7", "--method", method, "--out", model, "--quiet"});
+    const RunResult fit = RunProgram({"fit", "--data", DataDir() + "/Au-Ag", "--exclude", "0.3,0.7",
+                                      "--method", method, "--out", model, "--quiet"});
     ASSERT_EQ(fit.status, 0) << fit.err;
     const RunResult predict = RunProgram({"predict", "--model", model, "--x", "0.3"});
     ASSERT_EQ(predict.status, 0) << predict.err;
@@ -200,9 +200,9 @@ TEST_F(AuAgHoldout, RendersInHeadlessChromium) {
   const std::string command =
       "timeout 120 /usr/bin/chromium --headless --no-sandbox --disable-gpu --no-first-run "
       "--disable-background-networking --disable-component-update --disable-sync "
-      "--user-data-dir=" + *dir_ + "/chromium-profile --screenshot=" + shot +
-      " --window-size=1200,3000 file://" + *dir_ + "/report/report.html >" + *dir_ +
-      "/chromium.log 2>&1";
+      "--user-data-dir=" +
+      *dir_ + "/chromium-profile --screenshot=" + shot + " --window-size=1200,3000 file://" +
+      *dir_ + "/report/report.html >" + *dir_ + "/chromium.log 2>&1";
   ASSERT_EQ(std::system(command.c_str()), 0) << ReadText(*dir_ + "/chromium.log");
   int width = 0, height = 0;
   const std::vector<std::uint8_t> px = ReadPng(shot, &width, &height);
@@ -270,8 +270,8 @@ TEST(Validate, LeaveOneOutReportsProgress) {
 
 TEST(Validate, HoldoutMatchesTheManifestNumbers) {
   const std::string dir = MakeTempDir();
-  const RunResult run = RunProgram({"validate", "--data", DataDir() + "/Cu-Zn", "--holdout",
-                                    "0.85", "--methods", "eps-linear", "--out", dir, "--quiet"});
+  const RunResult run = RunProgram({"validate", "--data", DataDir() + "/Cu-Zn", "--holdout", "0.85",
+                                    "--methods", "eps-linear", "--out", dir, "--quiet"});
   ASSERT_EQ(run.status, 0) << run.err;
   const auto r = nlohmann::json::parse(ReadText(dir + "/report.json"));
   ASSERT_EQ(r["holdouts"].size(), 1u);
@@ -282,8 +282,8 @@ TEST(Validate, HoldoutMatchesTheManifestNumbers) {
 // A failing run: status 2, one line naming `needle`, no report folder.
 void ExpectRefused(const std::vector<std::string>& extra, const std::string& needle) {
   const std::string dir = MakeTempDir();
-  std::vector<std::string> args = {"validate", "--data", DataDir() + "/Au-Ag", "--out",
-                                   dir + "/report", "--quiet"};
+  std::vector<std::string> args = {"validate", "--data",        DataDir() + "/Au-Ag",
+                                   "--out",    dir + "/report", "--quiet"};
   args.insert(args.end(), extra.begin(), extra.end());
   const RunResult run = RunProgram(args);
   EXPECT_EQ(run.status, 2) << run.err;
@@ -330,8 +330,8 @@ TEST(Validate, UnwritableOutExitsTwoWithoutAReport) {
 TEST(Validate, ReplacesAnOldReportWhole) {
   const std::string dir = MakeTempDir();
   testing::WriteText(dir + "/report.json", "old");
-  const RunResult run = RunProgram({"validate", "--data", DataDir() + "/Au-Ag", "--holdout",
-                                    "0.5", "--methods", "eps-linear", "--out", dir, "--quiet"});
+  const RunResult run = RunProgram({"validate", "--data", DataDir() + "/Au-Ag", "--holdout", "0.5",
+                                    "--methods", "eps-linear", "--out", dir, "--quiet"});
   ASSERT_EQ(run.status, 0) << run.err;
   EXPECT_NO_THROW(nlohmann::json::parse(ReadText(dir + "/report.json")));
   // No temporary or probe files left behind.

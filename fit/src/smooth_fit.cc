@@ -338,18 +338,34 @@ double SampleRms(const GridData& g, size_t i, const Basis& basis, int nb,
   return count ? std::sqrt(sum / (2.0 * count)) : 0.0;
 }
 
-// Adds sample i's squared residuals (mean of the two parts) to each usable node's sum.
-void AddNodeSquares(const GridData& g, size_t i, const Basis& basis, int nb,
-                    const std::vector<std::vector<double>>& coeffs, std::vector<double>* sq,
-                    std::vector<int>* count) {
+// Adds the left-out sample i's squared residual at each usable node (mean of the two
+// parts), standardised by its leverage: r^2 / (1 + h), h = b^T (B^T B)^-1 b with b the
+// basis at x_i and B the fold's design at that node. Averaged over folds this estimates
+// the variance that, through the final fit's covariance, predicts its error between
+// samples (the prediction variance there is variance * h of the final design).
+void AddStandardisedSquares(const GridData& g, const std::vector<char>& in, size_t i,
+                            const Basis& basis, int nb,
+                            const std::vector<std::vector<double>>& coeffs,
+                            std::vector<double>* sq, std::vector<int>* count) {
   double p[kSmoothMaxDegree + 1];
   LegendreBasis(basis.U(g.x[i]), nb - 1, p);
+  const Eigen::Map<const Eigen::VectorXd> b(p, nb);
   for (size_t j = 0; j < g.grid_nm.size(); ++j) {
     if (!g.usable[i][j]) continue;
+    Eigen::MatrixXd btb = Eigen::MatrixXd::Identity(nb, nb) * 1e-9;
+    for (size_t s = 0; s < g.x.size(); ++s) {
+      if (!in[s] || !g.usable[s][j]) continue;
+      double q[kSmoothMaxDegree + 1];
+      LegendreBasis(basis.U(g.x[s]), nb - 1, q);
+      const Eigen::Map<const Eigen::VectorXd> row(q, nb);
+      btb += row * row.transpose();
+    }
+    const double leverage = b.dot(btb.ldlt().solve(b));
     const Complex<double> e = SmoothNodePermittivity(coeffs[j].data(), p, nb, g.omega_ev[j]);
     const double scale = std::norm(g.eps[i][j]);
     (*sq)[j] += 0.5 * (std::pow(e.re - g.eps[i][j].real(), 2) +
-                       std::pow(e.im - g.eps[i][j].imag(), 2)) / scale;
+                       std::pow(e.im - g.eps[i][j].imag(), 2)) /
+                scale / (1.0 + leverage);
     ++(*count)[j];
   }
 }
@@ -395,7 +411,7 @@ SmoothFitResult FitSmooth(const Dataset& dataset, const SmoothFitOptions& option
   if (degree > kSmoothMaxDegree) {
     throw Error("smooth fit: degree must lie in 0.." + std::to_string(kSmoothMaxDegree));
   }
-  // Mean squared left-out residual at each node for the chosen degree.
+  // Leverage-standardised mean squared left-out residual at each node, chosen degree.
   std::vector<double> cv_variance;
   if (degree < 0) {
     // Leave-one-composition-out over the interior samples. A fold has one sample fewer,
@@ -419,7 +435,7 @@ SmoothFitResult FitSmooth(const Dataset& dataset, const SmoothFitOptions& option
           in[out] = 0;
           auto coeffs = StartFromInversion(g, in, basis, fold_nb);
           SolveAny(fold_nb, g, in, basis, options, false, {}, &coeffs);
-          AddNodeSquares(g, out, basis, fold_nb, coeffs, &node_sq, &node_count);
+          AddStandardisedSquares(g, in, out, basis, fold_nb, coeffs, &node_sq, &node_count);
           const double rms = SampleRms(g, out, basis, fold_nb, coeffs);
           const double rms_r = SampleReflectanceRms(g, out, basis, fold_nb, coeffs);
           sum += rms * rms;
@@ -484,8 +500,8 @@ SmoothFitResult FitSmooth(const Dataset& dataset, const SmoothFitOptions& option
   } else {
     fit["covariance"] =
         "ceres::Covariance (dense SVD) of each wavelength node's coefficients on its data, "
-        "scaled by the larger of the data residual variance and the leave-one-out variance "
-        "at the chosen degree";
+        "scaled by the larger of the data residual variance and the node's leave-one-out "
+        "residual variance standardised by leverage, r^2 / (1 + h)";
     fit["residual_variance"] = stats.residual_variance;
     double mean = 0;
     for (double v : cv_variance) mean += v / cv_variance.size();

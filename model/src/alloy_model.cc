@@ -185,7 +185,7 @@ std::unique_ptr<AlloyModel> ReadModelFile(const std::string& path) {
   nlohmann::json doc;
   try {
     doc = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {  // parse_error, or out_of_range for 1e999
     throw Error(path + ": not valid JSON (" + e.what() + ")");
   }
   return ModelFromJson(doc, path);

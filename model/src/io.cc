@@ -154,6 +154,10 @@ Row ParseRow(const std::vector<std::string_view>& fields, const Columns& columns
     if (parsed[i] < 0) {
       Fail(at + columns.names[i] + " = " + Number(parsed[i]) + " is negative");
     }
+    if (parsed[i] > kMaxOpticalConstant) {
+      Fail(at + columns.names[i] + " = " + Number(parsed[i]) + " is implausibly large (over " +
+           Number(kMaxOpticalConstant) + ")");
+    }
   }
   Row row;
   row.line = line;

@@ -12,6 +12,8 @@ namespace alloycolor {
 
 namespace {
 
+constexpr double kPi = 3.14159265358979323846;
+
 struct KindName {
   TermKind kind;
   const char* name;
@@ -339,7 +341,9 @@ std::vector<PhysicalParameterValue> PhysicalModel::ParameterValues(double x_atom
   std::vector<PhysicalParameterValue> out;
   for (int k = 0; k < np; ++k) {
     const PhysicalParameter& p = layout_.parameters()[k];
-    out.push_back({p.term, p.kind, p.name, values[k], sigma[k]});
+    double v = values[k];
+    if (p.map == ParameterMap::kFree) v = std::remainder(v, 2.0 * kPi);  // a phase
+    out.push_back({p.term, p.kind, p.name, v, sigma[k]});
   }
   return out;
 }

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "alloycolor/model/error.h"
+#include "alloycolor/model/io.h"
 #include "alloycolor/model/optics.h"
 #include "alloycolor/model/units.h"
 
@@ -45,7 +46,11 @@ SampleModel::SampleModel(Kind kind, const Dataset& dataset) : kind_(kind) {
     hi = std::min(hi, node.nk.lambda_max_nm());
   }
   SetCommon(dataset, lo, hi);
-  Validate();
+  try {
+    Validate();
+  } catch (const Error& e) {  // name the data set at fault
+    throw Error(dataset.manifest_path + ": " + e.what());
+  }
   Diagnose();
 }
 
@@ -72,8 +77,9 @@ SampleModel::SampleModel(Kind kind, const nlohmann::json& doc, const std::string
         throw Error(where + ": lambda_nm, n and k need the same length, at least 2");
       }
       for (size_t j = 0; j < m; ++j) {
-        if (!std::isfinite(node.nk.lambda_nm[j]) || !std::isfinite(node.nk.n[j]) ||
-            !std::isfinite(node.nk.k[j]) || node.nk.k[j] < 0 ||
+        if (!std::isfinite(node.nk.lambda_nm[j]) || !(node.nk.lambda_nm[j] > 0) ||
+            !(node.nk.n[j] >= 0 && node.nk.n[j] <= kMaxOpticalConstant) ||
+            !(node.nk.k[j] >= 0 && node.nk.k[j] <= kMaxOpticalConstant) ||
             (j > 0 && !(node.nk.lambda_nm[j] > node.nk.lambda_nm[j - 1]))) {
           throw Error(where + ": bad row " + std::to_string(j));
         }

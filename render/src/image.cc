@@ -138,12 +138,12 @@ bool RunPngWriter(const PngJob& job, std::string* out, char* error) {
   return true;
 }
 
-// bytes: rows of width * 4 samples of bit_depth / 8 bytes each, big-endian.
-std::string EncodePng(int width, int height, int bit_depth, std::vector<png_byte>* bytes,
+// bytes (only read): rows of width * 4 samples of bit_depth / 8 bytes each, big-endian.
+std::string EncodePng(int width, int height, int bit_depth, png_byte* bytes,
                       const std::vector<PngText>& text) {
   const std::size_t row_bytes = static_cast<std::size_t>(width) * 4 * (bit_depth / 8);
   std::vector<png_bytep> rows(height);
-  for (int y = 0; y < height; ++y) rows[y] = bytes->data() + row_bytes * y;
+  for (int y = 0; y < height; ++y) rows[y] = bytes + row_bytes * y;
   std::vector<std::string> keys, values;
   keys.reserve(text.size());
   values.reserve(text.size());
@@ -160,8 +160,12 @@ std::string EncodePng(int width, int height, int bit_depth, std::vector<png_byte
     chunks[i].text = values.back().data();
     chunks[i].text_length = values.back().size();
   }
-  const PngJob job{static_cast<png_uint_32>(width), static_cast<png_uint_32>(height),
-                   bit_depth, rows.data(), chunks.data(), static_cast<int>(chunks.size())};
+  const PngJob job{static_cast<png_uint_32>(width),
+                   static_cast<png_uint_32>(height),
+                   bit_depth,
+                   rows.data(),
+                   chunks.data(),
+                   static_cast<int>(chunks.size())};
   std::string out;
   out.reserve(row_bytes * height / 2);
   char error[256] = "";
@@ -197,8 +201,7 @@ ImageRGBA16 EncodeSRGB16(const LinearImage& image) {
 }
 
 void Paste(const LinearImage& tile, int x0, int y0, LinearImage* image) {
-  if (x0 < 0 || y0 < 0 || x0 + tile.width > image->width ||
-      y0 + tile.height > image->height) {
+  if (x0 < 0 || y0 < 0 || x0 + tile.width > image->width || y0 + tile.height > image->height) {
     throw Error("Paste: the tile does not fit in the image");
   }
   for (int y = 0; y < tile.height; ++y) {
@@ -208,8 +211,8 @@ void Paste(const LinearImage& tile, int x0, int y0, LinearImage* image) {
 
 std::string PngBytes(const ImageRGBA8& image, const std::vector<PngText>& text) {
   CheckImage(image.width, image.height, image.rgba.size());
-  std::vector<png_byte> bytes(image.rgba.begin(), image.rgba.end());
-  return EncodePng(image.width, image.height, 8, &bytes, text);
+  // libpng only reads the rows it is given.
+  return EncodePng(image.width, image.height, 8, const_cast<png_byte*>(image.rgba.data()), text);
 }
 
 std::string PngBytes(const ImageRGBA16& image, const std::vector<PngText>& text) {
@@ -219,16 +222,14 @@ std::string PngBytes(const ImageRGBA16& image, const std::vector<PngText>& text)
     bytes[2 * i] = static_cast<png_byte>(image.rgba[i] >> 8);
     bytes[2 * i + 1] = static_cast<png_byte>(image.rgba[i] & 0xff);
   }
-  return EncodePng(image.width, image.height, 16, &bytes, text);
+  return EncodePng(image.width, image.height, 16, bytes.data(), text);
 }
 
-void WritePng(const std::string& path, const ImageRGBA8& image,
-              const std::vector<PngText>& text) {
+void WritePng(const std::string& path, const ImageRGBA8& image, const std::vector<PngText>& text) {
   WriteFileAtomic(path, PngBytes(image, text));
 }
 
-void WritePng(const std::string& path, const ImageRGBA16& image,
-              const std::vector<PngText>& text) {
+void WritePng(const std::string& path, const ImageRGBA16& image, const std::vector<PngText>& text) {
   WriteFileAtomic(path, PngBytes(image, text));
 }
 

@@ -27,6 +27,26 @@ struct Hit {
   Vec3 normal{0.0, 0.0, 1.0};
 };
 
+// What the edge test keeps of a hit at a pixel corner.
+struct CornerHit {
+  bool hit;
+  double t;
+};
+
+// Linear sRGB from XYZ (LinearSRGBFromXYZ, a linear map) as a matrix, for the inner loop.
+struct SRGBMatrix {
+  double m[3][3];
+  SRGBMatrix() {
+    const XYZ unit[3] = {{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}};
+    for (int c = 0; c < 3; ++c) {
+      const RGB column = LinearSRGBFromXYZ(unit[c]);
+      m[0][c] = column.r;
+      m[1][c] = column.g;
+      m[2][c] = column.b;
+    }
+  }
+};
+
 // The object, intersected by the orthographic ray through world point (x, y).
 class Geometry {
  public:
@@ -187,89 +207,92 @@ LinearImage Renderer::RenderWith(const Reflection& reflection) const {
     const double e = environment_.Backdrop(px / size, py / size);
     return XYZ{e * white.X, e * white.Y, e * white.Z};
   };
-  const auto store = [](float* pixel, const XYZ& xyz, double alpha) {
-    const RGB rgb = LinearSRGBFromXYZ(xyz);
-    pixel[0] = static_cast<float>(rgb.r);
-    pixel[1] = static_cast<float>(rgb.g);
-    pixel[2] = static_cast<float>(rgb.b);
+  static const SRGBMatrix kMatrix;
+  const auto& m = kMatrix.m;
+  const auto store = [&m](float* pixel, const XYZ& c, double alpha) {
+    pixel[0] = static_cast<float>(m[0][0] * c.X + m[0][1] * c.Y + m[0][2] * c.Z);
+    pixel[1] = static_cast<float>(m[1][0] * c.X + m[1][1] * c.Y + m[1][2] * c.Z);
+    pixel[2] = static_cast<float>(m[2][0] * c.X + m[2][1] * c.Y + m[2][2] * c.Z);
     pixel[3] = static_cast<float>(alpha);
   };
 
   LinearImage image(size, size);
   constexpr int kRowBlock = 8;
-  internal::ParallelFor(size, kRowBlock, internal::ThreadCount(options_.threads),
-                        [&](int row_begin, int row_end) {
-    // Hits at the pixel corners of rows row_begin..row_end.
-    const int stride = size + 1;
-    std::vector<Hit> corners(static_cast<std::size_t>(row_end - row_begin + 1) * stride);
-    for (int j = row_begin; j <= row_end; ++j) {
-      for (int i = 0; i <= size; ++i) {
-        corners[static_cast<std::size_t>(j - row_begin) * stride + i] = intersect(i, j);
-      }
-    }
-    for (int j = row_begin; j < row_end; ++j) {
-      const Hit* top = &corners[static_cast<std::size_t>(j - row_begin) * stride];
-      const Hit* bottom = top + stride;
-      for (int i = 0; i < size; ++i) {
-        float* pixel = image.Pixel(i, j);
-        const Hit centre = intersect(i + 0.5, j + 0.5);
-        bool edge = false;
-        for (const Hit* corner : {&top[i], &top[i + 1], &bottom[i], &bottom[i + 1]}) {
-          if (corner->hit != centre.hit ||
-              (centre.hit && std::abs(corner->t - centre.t) > kDepthJump)) {
-            edge = true;
+  internal::ParallelFor(
+      size, kRowBlock, internal::ThreadCount(options_.threads), [&](int row_begin, int row_end) {
+        // Hits at the pixel corners of rows row_begin..row_end.
+        const int stride = size + 1;
+        std::vector<CornerHit> corners(static_cast<std::size_t>(row_end - row_begin + 1) * stride);
+        for (int j = row_begin; j <= row_end; ++j) {
+          for (int i = 0; i <= size; ++i) {
+            const Hit hit = intersect(i, j);
+            corners[static_cast<std::size_t>(j - row_begin) * stride + i] = {hit.hit, hit.t};
           }
         }
-        if (!edge) {
-          if (centre.hit) {
-            store(pixel, shade(centre), 1.0);
-          } else if (transparent) {
-            store(pixel, XYZ{0.0, 0.0, 0.0}, 0.0);
-          } else {
-            store(pixel, backdrop(i + 0.5, j + 0.5), 1.0);
+        for (int j = row_begin; j < row_end; ++j) {
+          const CornerHit* top = &corners[static_cast<std::size_t>(j - row_begin) * stride];
+          const CornerHit* bottom = top + stride;
+          for (int i = 0; i < size; ++i) {
+            float* pixel = image.Pixel(i, j);
+            const Hit centre = intersect(i + 0.5, j + 0.5);
+            bool edge = false;
+            for (const CornerHit* corner : {&top[i], &top[i + 1], &bottom[i], &bottom[i + 1]}) {
+              if (corner->hit != centre.hit ||
+                  (centre.hit && std::abs(corner->t - centre.t) > kDepthJump)) {
+                edge = true;
+              }
+            }
+            if (!edge) {
+              if (centre.hit) {
+                store(pixel, shade(centre), 1.0);
+              } else if (transparent) {
+                store(pixel, XYZ{0.0, 0.0, 0.0}, 0.0);
+              } else {
+                store(pixel, backdrop(i + 0.5, j + 0.5), 1.0);
+              }
+              continue;
+            }
+            XYZ object{0.0, 0.0, 0.0}, background{0.0, 0.0, 0.0};
+            int hits = 0;
+            for (int b = 0; b < kEdgeSamples; ++b) {
+              for (int a = 0; a < kEdgeSamples; ++a) {
+                const double px = i + (a + 0.5) / kEdgeSamples;
+                const double py = j + (b + 0.5) / kEdgeSamples;
+                const Hit hit = intersect(px, py);
+                const XYZ c =
+                    hit.hit ? shade(hit) : (transparent ? XYZ{0, 0, 0} : backdrop(px, py));
+                XYZ& sum = hit.hit ? object : background;
+                sum.X += c.X;
+                sum.Y += c.Y;
+                sum.Z += c.Z;
+                hits += hit.hit;
+              }
+            }
+            const int total = kEdgeSamples * kEdgeSamples;
+            const double coverage = static_cast<double>(hits) / total;
+            // The object's colour: in uniform light exactly the centre ray's when it hits.
+            XYZ colour{0.0, 0.0, 0.0};
+            if (uniform && centre.hit) {
+              colour = shade(centre);
+            } else if (hits > 0) {
+              colour = {object.X / hits, object.Y / hits, object.Z / hits};
+            }
+            if (transparent) {
+              store(pixel, colour, coverage);
+            } else {
+              const int misses = total - hits;
+              const XYZ bg = misses > 0 ? XYZ{background.X / misses, background.Y / misses,
+                                              background.Z / misses}
+                                        : XYZ{0.0, 0.0, 0.0};
+              store(pixel,
+                    XYZ{coverage * colour.X + (1.0 - coverage) * bg.X,
+                        coverage * colour.Y + (1.0 - coverage) * bg.Y,
+                        coverage * colour.Z + (1.0 - coverage) * bg.Z},
+                    1.0);
+            }
           }
-          continue;
         }
-        XYZ object{0.0, 0.0, 0.0}, background{0.0, 0.0, 0.0};
-        int hits = 0;
-        for (int b = 0; b < kEdgeSamples; ++b) {
-          for (int a = 0; a < kEdgeSamples; ++a) {
-            const double px = i + (a + 0.5) / kEdgeSamples;
-            const double py = j + (b + 0.5) / kEdgeSamples;
-            const Hit hit = intersect(px, py);
-            const XYZ c = hit.hit ? shade(hit) : (transparent ? XYZ{0, 0, 0} : backdrop(px, py));
-            XYZ& sum = hit.hit ? object : background;
-            sum.X += c.X;
-            sum.Y += c.Y;
-            sum.Z += c.Z;
-            hits += hit.hit;
-          }
-        }
-        const int total = kEdgeSamples * kEdgeSamples;
-        const double coverage = static_cast<double>(hits) / total;
-        // The object's colour: in uniform light exactly the centre ray's when it hits.
-        XYZ colour{0.0, 0.0, 0.0};
-        if (uniform && centre.hit) {
-          colour = shade(centre);
-        } else if (hits > 0) {
-          colour = {object.X / hits, object.Y / hits, object.Z / hits};
-        }
-        if (transparent) {
-          store(pixel, colour, coverage);
-        } else {
-          const int misses = total - hits;
-          const XYZ bg = misses > 0 ? XYZ{background.X / misses, background.Y / misses,
-                                          background.Z / misses}
-                                    : XYZ{0.0, 0.0, 0.0};
-          store(pixel,
-                XYZ{coverage * colour.X + (1.0 - coverage) * bg.X,
-                    coverage * colour.Y + (1.0 - coverage) * bg.Y,
-                    coverage * colour.Z + (1.0 - coverage) * bg.Z},
-                1.0);
-        }
-      }
-    }
-  });
+      });
   return image;
 }
 

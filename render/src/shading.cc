@@ -54,8 +54,8 @@ double SmithLambda(double alpha, double c) {
 Vec3 SampleVisibleNormal(const Vec3& v, double alpha, double u1, double u2) {
   const Vec3 vh = Normalize(Vec3{alpha * v.x, alpha * v.y, v.z});
   const double lensq = vh.x * vh.x + vh.y * vh.y;
-  const Vec3 t1 = lensq > 0.0 ? (1.0 / std::sqrt(lensq)) * Vec3{-vh.y, vh.x, 0.0}
-                              : Vec3{1.0, 0.0, 0.0};
+  const Vec3 t1 =
+      lensq > 0.0 ? (1.0 / std::sqrt(lensq)) * Vec3{-vh.y, vh.x, 0.0} : Vec3{1.0, 0.0, 0.0};
   const Vec3 t2 = Cross(vh, t1);
   const double r = std::sqrt(u1);
   const double phi = 2.0 * kPi * u2;
@@ -151,7 +151,7 @@ double StudioRadiance(const Vec3& w) {
   room *= 1.0 - 0.85 * gap;
   room *= 1.0 - 0.9 * SoftBox(w, s.flag, s.flag_right, s.flag_up, 0.2, 0.9, 0.12);
   const double table = SmoothStep(0.0, -0.05, w.y);
-  double e = (1.0 - table) * room + table * (0.35 + 0.5 * std::sqrt(std::min(1.0, -w.y)));
+  double e = (1.0 - table) * room + table * (0.35 + 0.5 * std::sqrt(std::clamp(-w.y, 0.0, 1.0)));
   e += 3.5 * SoftBox(w, s.key, s.key_right, s.key_up, 0.42, 0.32, 0.08);
   e += 1.6 * SoftBox(w, s.fill, s.fill_right, s.fill_up, 0.14, 0.5, 0.05);
   e += 2.2 * SoftBox(w, s.strip, s.strip_right, s.strip_up, 0.7, 0.07, 0.04);
@@ -167,8 +167,7 @@ Vec3 LatLongDirection(double theta, double phi) {
 }  // namespace
 
 DirectReflection::DirectReflection(const Colorimeter& colorimeter,
-                                   std::vector<std::complex<double>> index,
-                                   double roughness_alpha)
+                                   std::vector<std::complex<double>> index, double roughness_alpha)
     : wx_(colorimeter.wx()),
       wy_(colorimeter.wy()),
       wz_(colorimeter.wz()),

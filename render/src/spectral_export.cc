@@ -4,6 +4,7 @@
 #include <cmath>
 #include <complex>
 #include <cstdio>
+#include <cstdlib>
 #include <sstream>
 
 #include "alloycolor/model/error.h"
@@ -14,9 +15,13 @@ namespace {
 
 constexpr double kToleranceNm = 1e-9;
 
+// The shortest of 15-17 significant digits that reads back as the same double.
 std::string Number(double value) {
   char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", value);
+  for (int digits = 15; digits <= 17; ++digits) {
+    std::snprintf(buf, sizeof buf, "%.*g", digits, value);
+    if (std::strtod(buf, nullptr) == value) break;
+  }
   return buf;
 }
 
@@ -46,31 +51,33 @@ ConductorSpectra HoldEnds(ConductorSpectra spectra, const std::string& what) {
   }
   for (std::size_t i = 0; i < spectra.n.size(); ++i) {
     if (!std::isfinite(spectra.n[i]) || !std::isfinite(spectra.k[i])) {
-      throw Error(what + ": n or k is not finite at " + ShortNumber(spectra.lambda_nm[i]) +
-                  " nm");
+      throw Error(what + ": n or k is not finite at " + ShortNumber(spectra.lambda_nm[i]) + " nm");
     }
   }
   const double lo = spectra.lambda_nm.front();
   const double hi = spectra.lambda_nm.back();
   if (lo > kExportNeedMinNm + kToleranceNm || hi < kExportNeedMaxNm - kToleranceNm) {
     throw Error(what + ": covers " + ShortNumber(lo) + "-" + ShortNumber(hi) +
-                " nm; the export needs data over at least " + ShortNumber(kExportNeedMinNm) +
-                "-" + ShortNumber(kExportNeedMaxNm) + " nm (it holds the end values out to " +
-                ShortNumber(kExportMinNm) + "-" + ShortNumber(kExportMaxNm) +
-                " nm, no further)");
+                " nm; the export needs data over at least " + ShortNumber(kExportNeedMinNm) + "-" +
+                ShortNumber(kExportNeedMaxNm) + " nm (it holds the end values out to " +
+                ShortNumber(kExportMinNm) + "-" + ShortNumber(kExportMaxNm) + " nm, no further)");
   }
   if (lo > kExportMinNm + kToleranceNm) {
-    spectra.notes.push_back("n and k below " + ShortNumber(lo) + " nm (where the data begin) "
-                            "are held at their " + ShortNumber(lo) + " nm values; the " +
-                            ShortNumber(kExportMinNm) + " nm point is not data");
+    spectra.notes.push_back("n and k below " + ShortNumber(lo) +
+                            " nm (where the data begin) "
+                            "are held at their " +
+                            ShortNumber(lo) + " nm values; the " + ShortNumber(kExportMinNm) +
+                            " nm point is not data");
     spectra.lambda_nm.insert(spectra.lambda_nm.begin(), kExportMinNm);
     spectra.n.insert(spectra.n.begin(), spectra.n.front());
     spectra.k.insert(spectra.k.begin(), spectra.k.front());
   }
   if (hi < kExportMaxNm - kToleranceNm) {
-    spectra.notes.push_back("n and k above " + ShortNumber(hi) + " nm (where the data end) "
-                            "are held at their " + ShortNumber(hi) + " nm values; the " +
-                            ShortNumber(kExportMaxNm) + " nm point is not data");
+    spectra.notes.push_back("n and k above " + ShortNumber(hi) +
+                            " nm (where the data end) "
+                            "are held at their " +
+                            ShortNumber(hi) + " nm values; the " + ShortNumber(kExportMaxNm) +
+                            " nm point is not data");
     spectra.lambda_nm.push_back(kExportMaxNm);
     spectra.n.push_back(spectra.n.back());
     spectra.k.push_back(spectra.k.back());
@@ -88,12 +95,23 @@ std::string XmlEscape(const std::string& text) {
   std::string out;
   for (char c : text) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&apos;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -183,12 +201,13 @@ std::string PbrtMaterialText(const ConductorSpectra& spectra, const std::string&
   CheckFileName(eta_file);
   CheckFileName(k_file);
   std::string out = Comment("pbrt-v4 smooth conductor: " + spectra.material);
-  out += Comment("n and k over " + Range(spectra) + " from the spectrum files (wavelength_nm "
+  out += Comment("n and k over " + Range(spectra) +
+                 " from the spectrum files (wavelength_nm "
                  "value); relative names resolve against the scene file's folder");
   for (const std::string& note : spectra.notes) out += Comment(note);
   for (const std::string& line : header) out += Comment(line);
-  out += "Material \"conductor\" \"spectrum eta\" \"" + eta_file + "\" \"spectrum k\" \"" +
-         k_file + "\"\n";
+  out += "Material \"conductor\" \"spectrum eta\" \"" + eta_file + "\" \"spectrum k\" \"" + k_file +
+         "\"\n";
   return out;
 }
 

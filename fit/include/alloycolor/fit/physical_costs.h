@@ -5,14 +5,16 @@
 // Residuals, for each wavelength i of the sample:
 //   (eps_model(w_i, x) - eps_i) / |eps_i|, real and imaginary parts.
 // The parameter block is the model's coefficients (parameter-major, c[k nb + d]). Every
-// parameter depends on its own polynomial r_k = sum_d c_kd P_d(u) only, so the Jets run
-// over the r_k (at most kPhysicalMaxParameters of them) and the chain rule
-// d/dc_kd = P_d(u) d/dr_k gives the coefficients' Jacobian.
+// parameter value depends on the polynomials r_k = sum_d c_kd P_d(u) only, so Jets over
+// the r_k (at most kPhysicalMaxParameters of them) give the values' derivatives once per
+// sample; each term, which depends on at most 4 values, is differentiated at each
+// wavelength with a Jet of 4; the chain rule joins them, and d/dc_kd = P_d(u) d/dr_k.
 #ifndef ALLOYCOLOR_FIT_PHYSICAL_COSTS_H_
 #define ALLOYCOLOR_FIT_PHYSICAL_COSTS_H_
 
 #include <ceres/ceres.h>
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <vector>
@@ -54,26 +56,49 @@ class PhysicalSampleCost : public ceres::CostFunction {
       }
       return true;
     }
+    // The parameter values as Jets over the r_k, once per sample.
     using Jet = ceres::Jet<double, kJet>;
     Jet raw_jet[kJet], values[kJet];
     for (int k = 0; k < np; ++k) raw_jet[k] = Jet(raw[k], k);
     PhysicalValuesFromRaw(layout_, raw_jet, values);
+    // Each term depends on its own few parameters: differentiate it with a small Jet over
+    // them, then chain to the r_k through values[].v.
+    using TermJet = ceres::Jet<double, 4>;
     const int nb = layout_.basis_size();
     const int nc = layout_.num_coefficients();
     double* jac = jacobians[0];
+    double dre[kPhysicalMaxParameters], dim[kPhysicalMaxParameters];
     for (size_t i = 0; i < omega_ev_.size(); ++i) {
-      const Complex<Jet> e = PhysicalPermittivity(layout_, values, omega_ev_[i]);
-      residuals[2 * i] = (e.re.a - eps1_[i]) * inv_abs_[i];
-      residuals[2 * i + 1] = (e.im.a - eps2_[i]) * inv_abs_[i];
+      double eps_re = 0, eps_im = 0;
+      std::fill(dre, dre + np, 0.0);
+      std::fill(dim, dim + np, 0.0);
+      for (int t = 0; t < layout_.num_terms(); ++t) {
+        const int o = layout_.term_offset(t);
+        const int size = layout_.term_size(t);
+        TermJet v[4];
+        for (int j = 0; j < size; ++j) v[j] = TermJet(values[o + j].a, j);
+        const Complex<TermJet> e = TermPermittivity(layout_.term_kind(t), v, omega_ev_[i]);
+        eps_re += e.re.a;
+        eps_im += e.im.a;
+        for (int j = 0; j < size; ++j) {
+          const Jet& value = values[o + j];
+          for (int k = 0; k < np; ++k) {
+            dre[k] += e.re.v[j] * value.v[k];
+            dim[k] += e.im.v[j] * value.v[k];
+          }
+        }
+      }
+      residuals[2 * i] = (eps_re - eps1_[i]) * inv_abs_[i];
+      residuals[2 * i + 1] = (eps_im - eps2_[i]) * inv_abs_[i];
       if (!std::isfinite(residuals[2 * i]) || !std::isfinite(residuals[2 * i + 1])) return false;
       double* row_re = jac + (2 * i) * nc;
       double* row_im = row_re + nc;
       for (int k = 0; k < np; ++k) {
-        const double dre = e.re.v[k] * inv_abs_[i];
-        const double dim = e.im.v[k] * inv_abs_[i];
+        const double a = dre[k] * inv_abs_[i];
+        const double b = dim[k] * inv_abs_[i];
         for (int d = 0; d < nb; ++d) {
-          row_re[k * nb + d] = dre * basis_[d];
-          row_im[k * nb + d] = dim * basis_[d];
+          row_re[k * nb + d] = a * basis_[d];
+          row_im[k * nb + d] = b * basis_[d];
         }
       }
     }

@@ -7,21 +7,28 @@
 // interband terms represent eps1 > 1, so no point contradicts the model.
 //
 // Start. (1) Each end sample (lowest and highest composition, normally the pure
-// elements) is fitted alone (degree 0) from a grid of starting centres for the interband
-// terms: every combination of kStartCentres energies spread over the fit range (terms of
-// one kind in increasing order), the Drude term from the pointwise inversion (eq. 11, 12)
-// at the longest wavelength, each term's strength from the data's eps2 there. (2) The
-// joint fit starts from the straight line between the ends' polynomials r (coefficients of
-// degree >= 2 at zero), once for each pair of the ends' best kEndCandidates starts, and
-// keeps the lowest cost. Bounds: the phases in [-pi, pi], the constant coefficients of
-// positive parameters in [0, an upper limit] (energies up to 3 times the range's highest
-// photon energy), which keeps the solver out of flat regions where pos(r) is 0.
+// elements) is fitted alone (degree 0). eps is linear in eps_inf, wp^2 and each term's
+// strength (a critical point's A cos phi, A sin phi), so a grid search over the other
+// parameters (gamma around the pointwise inversion, eq. 11, 12, at the longest
+// wavelength; each term's centre on 12 energies across the range, width on 4, a
+// rioux-gap's Eg - E0 on 3) solves for those by weighted linear least squares from a
+// cached Gram matrix; the best combinations with distinct centres are refined by Ceres.
+// (2) Joint starts: the straight line between the ends' polynomials r, and quadratics
+// through the ends and the middle sample's own fits (grid search with each centre kept
+// near the span of the ends' centres, so the terms keep their roles). Every start runs
+// kRaceIterations; the lowest cost goes on to convergence. Bounds: the phases' coefficients
+// in [-pi, pi], the constant coefficients of positive parameters in [0, an upper limit]
+// (energies up to 3 times the range's highest photon energy), which keeps the solver out
+// of flat regions where pos(r) is 0.
 //
 // Covariance: ceres::Covariance (dense SVD) of all coefficients, scaled by the residual
-// variance sum r^2 / (residuals - coefficients). When the Jacobian is rank-deficient the
-// pseudo-inverse is used (null_space_rank = -1) and the fit statistics say so.
-// Linear algebra is dense Eigen QR, single-threaded, so the same inputs give the same
-// bytes.
+// variance sum r^2 / (residuals - coefficients) times (1 + rho) / (1 - rho), rho the
+// residuals' lag-1 autocorrelation along wavelength (0 <= rho <= 0.99): a smooth misfit
+// carries less information than the number of residuals says (AR(1) effective sample
+// size). When the Jacobian is rank-deficient the pseudo-inverse is used
+// (null_space_rank = -1) and the fit statistics say so.
+// Linear algebra is Eigen's dense normal Cholesky, single-threaded, so the same inputs
+// give the same bytes.
 #ifndef ALLOYCOLOR_FIT_PHYSICAL_FIT_H_
 #define ALLOYCOLOR_FIT_PHYSICAL_FIT_H_
 
@@ -46,7 +53,7 @@ struct PhysicalFitOptions {
   // the Drude term alone, or "auto": none for infrared data; otherwise each of
   // kAutoTerms is fitted to the end samples and the lowest cost wins.
   std::string terms = "auto";
-  int max_iterations = 200;
+  int max_iterations = 500;
   bool covariance = true;
   std::function<void(const std::string& message)> progress;  // may be empty
 };

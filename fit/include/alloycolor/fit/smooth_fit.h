@@ -15,9 +15,9 @@
 // samples' normal-incidence reflectance error (what colour depends on) (a fold is fitted with degree
 // D - 1, so it keeps the final fit's degrees of freedom). Covariance: ceres::Covariance of
 // each node's coefficients on that node's data (the curvature prior left out, which is
-// conservative), scaled by the larger of the data residual variance and the
-// cross-validated variance (an interpolating fit has no residual to scale by, but it still
-// errs between samples).
+// conservative), scaled by the larger of the data residual variance and the node's
+// leave-one-out variance r^2 / (1 + h) (h the left-out composition's leverage in its fold):
+// an interpolating fit has no residual to scale by, but it still errs between samples.
 #ifndef ALLOYCOLOR_FIT_SMOOTH_FIT_H_
 #define ALLOYCOLOR_FIT_SMOOTH_FIT_H_
 

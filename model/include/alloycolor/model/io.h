@@ -4,7 +4,8 @@
 //    `wavelength_um value`, joined on the n grid with k interpolated). Other entry types
 //    (`formula N`, `tabulated n2`) are refused with a message naming them.
 //  - CSV with a header line `lambda_nm,n,k` (lines starting with '#' are comments).
-// Every error names the file, and the line where there is one. A wavelength repeated
+// Every error names the file, and the line where there is one. n and k must lie in
+// [0, kMaxOpticalConstant]. A wavelength repeated
 // with different values is averaged with a warning (real files do this).
 #ifndef ALLOYCOLOR_MODEL_IO_H_
 #define ALLOYCOLOR_MODEL_IO_H_
@@ -15,6 +16,10 @@
 #include "alloycolor/model/spectrum.h"
 
 namespace alloycolor {
+
+// The largest n or k a reader accepts. Metals reach k ~ 1e3 in the far infrared; above
+// 1e77, |eps|^2 overflows a double and reflectance becomes NaN.
+inline constexpr double kMaxOpticalConstant = 1e6;
 
 // Chooses the reader from the extension (.yml/.yaml or .csv; another extension is read
 // as YAML when a line starts with "DATA:"). warnings, if given, receive one line per

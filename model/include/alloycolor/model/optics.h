@@ -101,9 +101,13 @@ Reflectance<T> FresnelReflectance(const Complex<T>& nk, const T& cos_psi0) {
   const T sin2 = T(1) - cos_psi0 * cos_psi0;
   const Complex<T> s = Sqrt(Complex<T>{n2.re - sin2, n2.im});
   const Complex<T> c{cos_psi0, T(0)};
-  const T rs = Norm2(c - s) / Norm2(c + s);
+  // Two 0/0 limits: N = 1 at grazing incidence (no interface: R = 0), and N = 0 at
+  // normal incidence, where Rp tends to Rs = 1.
+  const T rs_den = Norm2(c + s);
+  const T rs = rs_den == T(0) ? T(0) : Norm2(c - s) / rs_den;
   const Complex<T> n2c = cos_psi0 * n2;
-  const T rp = Norm2(n2c - s) / Norm2(n2c + s);
+  const T rp_den = Norm2(n2c + s);
+  const T rp = rp_den == T(0) ? rs : Norm2(n2c - s) / rp_den;
   return {rs, rp};
 }
 

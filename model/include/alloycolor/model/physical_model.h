@@ -96,8 +96,11 @@ class PhysicalLayout {
   const std::vector<PhysicalParameter>& parameters() const { return parameters_; }
   int num_parameters() const { return static_cast<int>(parameters_.size()); }
   int num_coefficients() const { return num_parameters() * basis_size(); }
-  // Index of the first parameter of a term.
+  // Index of the first parameter of a term, and the term's number of parameters.
   int term_offset(int term) const { return term_offset_[term]; }
+  int term_size(int term) const {
+    return (term + 1 < num_terms() ? term_offset_[term + 1] : num_parameters()) - term_offset_[term];
+  }
   // Index of a term's parameter by name, or -1.
   int Find(int term, const std::string& name) const;
 
@@ -234,13 +237,20 @@ Complex<T> InterbandPermittivity(TermKind kind, const T* v, double omega_ev) {
   return {T(0.0), T(0.0)};
 }
 
+// One term of the header (the Drude term or an interband one) at photon energy w; v points
+// at the term's parameters (layout order).
+template <typename T>
+Complex<T> TermPermittivity(TermKind kind, const T* v, double omega_ev) {
+  if (kind == TermKind::kDrude) return DrudePermittivity(T(omega_ev), v[1] * v[1], v[2], v[0]);
+  return InterbandPermittivity(kind, v, omega_ev);
+}
+
 // eps of the header from parameter values (layout order) at photon energy w.
 template <typename T>
 Complex<T> PhysicalPermittivity(const PhysicalLayout& layout, const T* values, double omega_ev) {
-  Complex<T> eps = DrudePermittivity(T(omega_ev), values[1] * values[1], values[2], values[0]);
-  for (int t = 1; t < layout.num_terms(); ++t) {
-    eps = eps + InterbandPermittivity(layout.term_kind(t), values + layout.term_offset(t),
-                                      omega_ev);
+  Complex<T> eps{T(0.0), T(0.0)};
+  for (int t = 0; t < layout.num_terms(); ++t) {
+    eps = eps + TermPermittivity(layout.term_kind(t), values + layout.term_offset(t), omega_ev);
   }
   return eps;
 }

@@ -26,7 +26,9 @@
 // the coverage; in studio light the colour is the mean of the samples. The background is
 // transparent or the studio backdrop (neutral: the illuminant's white scaled, a soft
 // gradient). XYZ become linear sRGB (IEC 61966-2-1, no chromatic adaptation, as the
-// `color` command). Rows are shaded in parallel with std::thread.
+// `color` command). Rows are shaded in parallel with std::thread. Light reaches the object
+// from the environment only: no shadows and no inter-reflections (the ring does not
+// reflect itself).
 #ifndef ALLOYCOLOR_RENDER_RENDERER_H_
 #define ALLOYCOLOR_RENDER_RENDERER_H_
 

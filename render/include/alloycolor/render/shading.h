@@ -118,10 +118,12 @@ std::string LightingName(Lighting lighting);
 
 // The achromatic factor E(w) of an environment.
 //  - Uniform: E = 1 in every direction (a white integrating sphere).
-//  - Studio: a product-shot set: a dark room, a light floor and a seamless backdrop behind
-//    the object with a gradient, a large soft key light above left, a fill light to the
-//    right, a strip light above and behind, and a broad dim card around the camera. Lights
-//    have smooth (smoothstep) edges so that mirror reflections of them are soft.
+//  - Studio: a product-shot set, a light tent: walls brightening overhead, a dark gap just
+//    above the table's edge (the horizon line polished metal shows), the lit table below
+//    it, a black flag to the front right, a large key softbox above left (E = 3.5), a
+//    narrow fill strip to the right and a strip light above and behind. Lights have soft
+//    (smoothstep) edges, so that mirror reflections of them are soft. All of them have the
+//    illuminant's spectrum: the metal alone colours the light.
 class Environment {
  public:
   explicit Environment(Lighting lighting) : lighting_(lighting) {}

@@ -3,7 +3,8 @@
 //
 //  - PREFIX.eta.spd, PREFIX.k.spd: comment lines starting with '#' (the first names the
 //    material and composition), then one `wavelength_nm value` pair per line, separated by
-//    one space, wavelengths strictly increasing, 17 significant digits (exact doubles).
+//    one space, wavelengths strictly increasing, with enough digits (15-17) to read back as
+//    the same doubles.
 //    This is the format of pbrt-v4's ReadFloatFile (numbers separated by white space, '#'
 //    to the end of the line a comment) and of Mitsuba 3's spectrum_from_file (".spd"
 //    extension, '#' comment lines, two numbers per line). Both renderers interpolate

@@ -1,0 +1,261 @@
+// alloycolor sweep: the colour of an alloy at N evenly spaced compositions, as CSV or JSON,
+// fast enough for millions of rows (render/sweep.h; output formatted into large blocks).
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "alloycolor/model/error.h"
+#include "alloycolor/render/colorimetry.h"
+#include "alloycolor/render/sweep.h"
+#include "common.h"
+
+namespace alloycolor::app {
+namespace {
+
+// Sweeps at least this long interpolate a table of XYZ (unless --exact).
+constexpr long long kTableMinSteps = 1000;
+constexpr long long kMaxSteps = 1000000000;
+
+struct SweepOptions {
+  ModelSource source;
+  std::string from_text, to_text;
+  long long steps = 101;
+  double angle_deg = 0.0;
+  std::string illuminant = "D65";
+  int observer = 2;
+  std::string format = "csv";
+  bool exact = false;
+  bool quiet = false;
+};
+
+// Text written to a FILE in blocks of about 1 MiB, numbers formatted without stdio.
+class Output {
+ public:
+  explicit Output(std::FILE* file) : file_(file) { buffer_.resize(kBlock + kSlack); }
+  ~Output() = default;
+
+  void Text(std::string_view text) {
+    if (used_ + text.size() > buffer_.size()) {
+      Flush();
+      if (text.size() > buffer_.size()) buffer_.resize(text.size());
+    }
+    std::memcpy(buffer_.data() + used_, text.data(), text.size());
+    used_ += text.size();
+  }
+  void Char(char c) { buffer_[used_++] = c; }
+
+  // |value| rounded to `decimals` (at most 9) digits after the point, like %.*f; with
+  // trim, trailing zeros after the first decimal are dropped.
+  void Fixed(double value, int decimals, bool trim = false) {
+    static constexpr std::uint64_t kPow10[] = {1,      10,      100,      1000,      10000,
+                                               100000, 1000000, 10000000, 100000000, 1000000000};
+    const double scaled = std::abs(value) * static_cast<double>(kPow10[decimals]);
+    if (!(scaled < 9e15)) {  // huge or not finite: rare, through snprintf
+      char text[400];
+      const int n = std::snprintf(text, sizeof text, "%.*f", decimals, value);
+      Text(std::string_view(text, n > 0 ? std::min<size_t>(n, sizeof text - 1) : 0));
+      return;
+    }
+    const auto rounded = static_cast<std::uint64_t>(scaled + 0.5);
+    if (value < 0 && rounded != 0) Char('-');
+    Unsigned(rounded / kPow10[decimals]);
+    if (decimals == 0) return;
+    std::uint64_t fraction = rounded % kPow10[decimals];
+    char digits[9];
+    for (int i = decimals - 1; i >= 0; --i) {
+      digits[i] = static_cast<char>('0' + fraction % 10);
+      fraction /= 10;
+    }
+    int keep = decimals;
+    if (trim) {
+      while (keep > 1 && digits[keep - 1] == '0') --keep;
+    }
+    Char('.');
+    std::memcpy(buffer_.data() + used_, digits, keep);
+    used_ += keep;
+  }
+
+  void Unsigned(std::uint64_t value) {
+    char digits[20];
+    int n = 0;
+    do {
+      digits[n++] = static_cast<char>('0' + value % 10);
+      value /= 10;
+    } while (value != 0);
+    while (n > 0) buffer_[used_++] = digits[--n];
+  }
+
+  // Call between rows: flushes when the block is full.
+  void EndRow() {
+    if (used_ >= kBlock) Flush();
+  }
+
+  void Flush() {
+    if (used_ > 0 && std::fwrite(buffer_.data(), 1, used_, file_) != used_) {
+      throw Error("cannot write standard output");
+    }
+    used_ = 0;
+  }
+
+ private:
+  static constexpr size_t kBlock = 1 << 20;
+  static constexpr size_t kSlack = 4096;  // room for one row past the block
+  std::FILE* file_;
+  std::vector<char> buffer_;
+  size_t used_ = 0;
+};
+
+std::string Describe(double x) {
+  std::ostringstream out;
+  out << x;
+  return out.str();
+}
+
+void Run(const SweepOptions& o) {
+  if (o.format != "csv" && o.format != "json") {
+    throw Error("--format: '" + o.format + "' is not csv or json");
+  }
+  if (o.steps < 1 || o.steps > kMaxSteps) {
+    throw Error("--steps: " + std::to_string(o.steps) + " is not between 1 and " +
+                std::to_string(kMaxSteps));
+  }
+  if (!(o.angle_deg >= 0.0 && o.angle_deg <= 90.0)) {
+    throw Error("--angle: " + Describe(o.angle_deg) + " lies outside 0-90 degrees");
+  }
+  const render::Colorimeter colorimeter = LoadColorimeter(o.illuminant, o.observer);
+  if (o.from_text.find(',') != std::string::npos || o.to_text.find(',') != std::string::npos) {
+    throw Error("--from/--to: give one composition each");
+  }
+  const auto model = o.source.Load(o.quiet);
+  const double from =
+      o.from_text.empty() ? model->x_min() : ParseComposition(o.from_text, model->system());
+  const double to =
+      o.to_text.empty() ? model->x_max() : ParseComposition(o.to_text, model->system());
+  CheckComposition(*model, from, o.source.extrapolate);
+  CheckComposition(*model, to, o.source.extrapolate);
+
+  // The model is named by its file or data set (the library's message names the method).
+  const std::string source = o.source.model_path.empty() ? o.source.data_dir : o.source.model_path;
+  std::unique_ptr<render::ColorSweep> made;
+  try {
+    made = std::make_unique<render::ColorSweep>(colorimeter, *model, o.angle_deg);
+  } catch (const Error& e) {
+    throw Error(source + ": " + e.what());
+  }
+  render::ColorSweep& sweep = *made;
+  const bool table = !o.exact && o.steps >= kTableMinSteps && from != to &&
+                     sweep.BuildTable(from, to, render::kSweepTableTolerance);
+  const render::XYZ white = colorimeter.White();
+  const bool json = o.format == "json";
+
+  Output out(stdout);
+  if (json) {
+    nlohmann::json head = {{"system", model->system().Name()},
+                           {"method", model->method()},
+                           {"composition", "atomic_fraction_a"},
+                           {"illuminant", colorimeter.illuminant()},
+                           {"observer", o.observer},
+                           {"angle_deg", o.angle_deg},
+                           {"steps", o.steps}};
+    head["evaluation"] = table ? nlohmann::json{{"method", "table"},
+                                                {"nodes", sweep.table_nodes()},
+                                                {"max_error_xyz", sweep.table_error()},
+                                                {"tolerance_xyz", render::kSweepTableTolerance}}
+                               : nlohmann::json{{"method", "exact"}};
+    std::string text = head.dump();
+    text.pop_back();  // the closing brace; the results follow
+    out.Text(text);
+    out.Text(",\"results\":[\n");
+  } else {
+    out.Text("x,X,Y,Z,L,a,b,srgb8_r,srgb8_g,srgb8_b\n");
+  }
+  const double span = to - from;
+  const double last = static_cast<double>(o.steps - 1);
+  for (long long i = 0; i < o.steps; ++i) {
+    const double x = i == 0 ? from : i == o.steps - 1 ? to : from + span * (i / last);
+    const render::XYZ xyz = table ? sweep.XYZAt(x) : sweep.ExactXYZ(x);
+    if (!std::isfinite(xyz.X) || !std::isfinite(xyz.Y) || !std::isfinite(xyz.Z)) {
+      throw Error("composition x = " + Describe(x) + ": the " + model->method() +
+                  " model gives no finite colour");
+    }
+    const render::Lab lab = render::LabFromXYZ(xyz, white);
+    const auto rgb = render::SRGB8FromLinear(render::LinearSRGBFromXYZ(xyz));
+    if (json) {
+      out.Text(i == 0 ? "{\"x\":" : ",\n{\"x\":");
+      out.Fixed(x, 9, true);
+      out.Text(",\"XYZ\":[");
+    } else {
+      out.Fixed(x, 9, true);
+      out.Char(',');
+    }
+    out.Fixed(xyz.X, 7);
+    out.Char(',');
+    out.Fixed(xyz.Y, 7);
+    out.Char(',');
+    out.Fixed(xyz.Z, 7);
+    out.Text(json ? "],\"Lab\":[" : ",");
+    out.Fixed(lab.L, 4);
+    out.Char(',');
+    out.Fixed(lab.a, 4);
+    out.Char(',');
+    out.Fixed(lab.b, 4);
+    out.Text(json ? "],\"srgb8\":[" : ",");
+    out.Unsigned(rgb[0]);
+    out.Char(',');
+    out.Unsigned(rgb[1]);
+    out.Char(',');
+    out.Unsigned(rgb[2]);
+    out.Text(json ? "]}" : "\n");
+    out.EndRow();
+  }
+  if (json) out.Text("\n]}\n");
+  out.Flush();
+  if (std::fflush(stdout) != 0) throw Error("cannot write standard output");
+  if (table && !o.quiet) {
+    std::fprintf(stderr,
+                 "alloycolor: sweep: XYZ interpolated from a table of %d compositions, "
+                 "measured error %.2g (at most %.0e; --exact evaluates each)\n",
+                 sweep.table_nodes(), sweep.table_error(), render::kSweepTableTolerance);
+  }
+}
+
+}  // namespace
+
+void RegisterSweep(CLI::App& app) {
+  auto o = std::make_shared<SweepOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "sweep",
+      "Colour of the alloy at --steps evenly spaced compositions from --from to --to (default: "
+      "the model's range), one row each: x, XYZ (perfect reflector Y = 1), CIELAB (white = "
+      "the illuminant's) and 8-bit sRGB, as CSV (x,X,Y,Z,L,a,b,srgb8_r,srgb8_g,srgb8_b) or "
+      "JSON. Sweeps of 1000 steps or more read XYZ from a table of the model's colour "
+      "against x (cubic interpolation between the training compositions), refined until the "
+      "error measured at every table interval's midpoint is at most 1e-7 in X, Y and Z; "
+      "--exact evaluates every composition instead. XYZ is printed to 7 decimals, Lab to "
+      "4.");
+  o->source.AddOptions(cmd, true);
+  cmd->add_option("--from", o->from_text,
+                  "First composition: 0.25, 25at%, 25wt% or 6k (default: the model's lowest)");
+  cmd->add_option("--to", o->to_text, "Last composition (default: the model's highest)");
+  cmd->add_option("--steps", o->steps, "Number of compositions, 1 to 1e9")->capture_default_str();
+  cmd->add_option("--angle", o->angle_deg, "Angle of incidence in degrees (0-90)")
+      ->capture_default_str();
+  cmd->add_option("--illuminant", o->illuminant, "CIE illuminant: A, C, D50, D65, E, F2, F11")
+      ->capture_default_str();
+  cmd->add_option("--observer", o->observer, "CIE observer: 2 (1931) or 10 (1964)")
+      ->capture_default_str();
+  cmd->add_option("--format", o->format, "csv or json")->capture_default_str();
+  cmd->add_flag("--exact", o->exact, "Evaluate every composition exactly (no table)");
+  cmd->add_flag("--quiet", o->quiet, "No warnings or notes on stderr");
+  cmd->callback([o]() { Run(*o); });
+}
+
+}  // namespace alloycolor::app

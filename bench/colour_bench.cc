@@ -1,0 +1,203 @@
+// Colours per second along a sweep of compositions of Au-Ag (D65, 2-degree observer, the
+// 5 nm grid, normal incidence unless named), for each model: paper, eps-linear, smooth.
+// One item is one composition taken to XYZ, CIELAB and 8-bit sRGB.
+//
+//  - Naive: the straightforward implementation of the chain, written here as a plain
+//    per-sample loop with std::complex: the model's eps on the grid (for smooth, its
+//    coefficients interpolated in wavelength and exponentiated per sample, as a first
+//    implementation would), N = sqrt(eps), R = |(N - 1) / (N + 1)|^2, weighted sums.
+//  - Library: what `alloycolor color` does per composition: render::IndexOnGrid,
+//    render::MaterialXYZ, render::ColorFromXYZ.
+//  - SweepExact: render::ColorSweep::ExactXYZ (smooth: coefficients on the grid once, no
+//    allocation per composition).
+//  - SweepTable: render::ColorSweep with its table of XYZ against x (error <= 1e-7).
+// scripts/bench.sh runs this and prints the ratios to Naive.
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "alloycolor/fit/smooth_fit.h"
+#include "alloycolor/model/dataset.h"
+#include "alloycolor/model/sample_models.h"
+#include "alloycolor/model/smooth_model.h"
+#include "alloycolor/model/units.h"
+#include "alloycolor/render/colorimetry.h"
+#include "alloycolor/render/material_color.h"
+#include "alloycolor/render/sweep.h"
+
+namespace alloycolor {
+namespace {
+
+constexpr int kSweepSteps = 1001;  // compositions 0, 0.001, ..., 1, cycled
+
+struct Fixture {
+  render::Colorimeter colorimeter = render::Colorimeter::Load(ALLOYCOLOR_DATA_DIR, "D65", 2);
+  Dataset dataset = LoadDataset(std::string(ALLOYCOLOR_DATA_DIR) + "/Au-Ag");
+  std::unique_ptr<AlloyModel> paper, eps_linear, smooth;
+  Fixture() {
+    paper = std::make_unique<SampleModel>(SampleModel::Kind::kPaper, dataset);
+    eps_linear = std::make_unique<SampleModel>(SampleModel::Kind::kEpsLinear, dataset);
+    fit::SmoothFitOptions options;  // the default fit: degree by cross-validation
+    options.covariance = false;
+    smooth = std::move(fit::FitSmooth(dataset, options).model);
+  }
+  const AlloyModel& Model(int which) const {
+    return which == 0 ? *paper : which == 1 ? *eps_linear : *smooth;
+  }
+};
+
+const Fixture& Shared() {
+  static const Fixture fixture;
+  return fixture;
+}
+
+double SweepX(int64_t i) { return static_cast<double>(i % kSweepSteps) / (kSweepSteps - 1); }
+
+// CIELAB and 8-bit sRGB of XYZ: the same for every variant.
+struct Colour {
+  render::XYZ xyz;
+  render::Lab lab;
+  std::array<std::uint8_t, 3> srgb8;
+};
+Colour Finish(const render::Colorimeter& colorimeter, const render::XYZ& xyz) {
+  return {xyz, render::LabFromXYZ(xyz, colorimeter.White()),
+          render::SRGB8FromLinear(render::LinearSRGBFromXYZ(xyz))};
+}
+
+// ---- the straightforward implementation ----
+
+// The colorimeter's grid held inside the model's range.
+std::vector<double> HeldGrid(const render::Colorimeter& colorimeter, const AlloyModel& model) {
+  std::vector<double> grid = colorimeter.lambda_nm();
+  for (double& l : grid) l = std::clamp(l, model.lambda_min_nm(), model.lambda_max_nm());
+  return grid;
+}
+
+render::XYZ NaiveXYZFromEps(const render::Colorimeter& colorimeter,
+                            const std::vector<std::complex<double>>& eps) {
+  render::XYZ xyz{0, 0, 0};
+  for (size_t i = 0; i < eps.size(); ++i) {
+    const std::complex<double> n = std::sqrt(eps[i]);
+    const double r = std::norm((n - 1.0) / (n + 1.0));
+    xyz.X += colorimeter.wx()[i] * r;
+    xyz.Y += colorimeter.wy()[i] * r;
+    xyz.Z += colorimeter.wz()[i] * r;
+  }
+  return xyz;
+}
+
+// The smooth model evaluated sample by sample from its nodes, with std::complex.
+std::vector<std::complex<double>> NaiveSmoothEps(const SmoothModel& model, double x,
+                                                 const std::vector<double>& grid) {
+  const int nb = model.basis_size();
+  std::vector<double> p(nb);
+  LegendreBasis(model.BasisArgument(x), model.degree(), p.data());
+  const std::vector<double>& nodes = model.grid_nm();
+  std::vector<std::complex<double>> eps;
+  for (double l : grid) {
+    size_t hi = std::upper_bound(nodes.begin(), nodes.end(), l) - nodes.begin();
+    hi = std::clamp<size_t>(hi, 1, nodes.size() - 1);
+    const double t = (l - nodes[hi - 1]) / (nodes[hi] - nodes[hi - 1]);
+    double ln_gamma = 0, ln_wp2 = 0;
+    for (int d = 0; d < nb; ++d) {
+      const double a = model.coeffs()[hi - 1][d] * (1 - t) + model.coeffs()[hi][d] * t;
+      const double b = model.coeffs()[hi - 1][nb + d] * (1 - t) + model.coeffs()[hi][nb + d] * t;
+      ln_gamma += a * p[d];
+      ln_wp2 += b * p[d];
+    }
+    const double w = kHcEvNm / l;
+    const std::complex<double> i(0, 1);
+    eps.push_back(1.0 - std::exp(ln_wp2) / (w * (w + i * std::exp(ln_gamma))));
+  }
+  return eps;
+}
+
+void BM_Naive(benchmark::State& state) {
+  const Fixture& f = Shared();
+  const AlloyModel& model = f.Model(state.range(0));
+  const auto* smooth = dynamic_cast<const SmoothModel*>(&model);
+  const std::vector<double> grid = HeldGrid(f.colorimeter, model);
+  int64_t i = 0;
+  for (auto _ : state) {
+    const double x = SweepX(i++);
+    const std::vector<std::complex<double>> eps =
+        smooth ? NaiveSmoothEps(*smooth, x, grid) : model.Permittivity(x, grid);
+    benchmark::DoNotOptimize(Finish(f.colorimeter, NaiveXYZFromEps(f.colorimeter, eps)));
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
+void BM_Library(benchmark::State& state) {
+  const Fixture& f = Shared();
+  const AlloyModel& model = f.Model(state.range(0));
+  int64_t i = 0;
+  for (auto _ : state) {
+    const double x = SweepX(i++);
+    const render::XYZ xyz =
+        render::MaterialXYZ(f.colorimeter, render::IndexOnGrid(f.colorimeter, model, x), 0.0);
+    benchmark::DoNotOptimize(render::ColorFromXYZ(f.colorimeter, xyz));
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
+void BM_SweepExact(benchmark::State& state) {
+  const Fixture& f = Shared();
+  const render::ColorSweep sweep(f.colorimeter, f.Model(state.range(0)),
+                                 static_cast<double>(state.range(1)));
+  int64_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(Finish(f.colorimeter, sweep.ExactXYZ(SweepX(i++))));
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
+void BM_SweepTable(benchmark::State& state) {
+  const Fixture& f = Shared();
+  render::ColorSweep sweep(f.colorimeter, f.Model(state.range(0)),
+                           static_cast<double>(state.range(1)));
+  if (!sweep.BuildTable(0.0, 1.0)) {
+    state.SkipWithError("no table within the tolerance");
+    return;
+  }
+  state.counters["table_nodes"] = sweep.table_nodes();
+  state.counters["table_error"] = sweep.table_error();
+  int64_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(Finish(f.colorimeter, sweep.XYZAt(SweepX(i++))));
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
+// Building the table, once per sweep.
+void BM_SweepTableBuild(benchmark::State& state) {
+  const Fixture& f = Shared();
+  render::ColorSweep sweep(f.colorimeter, f.Model(state.range(0)), 0.0);
+  for (auto _ : state) benchmark::DoNotOptimize(sweep.BuildTable(0.0, 1.0));
+}
+
+void ModelNames(benchmark::internal::Benchmark* b) {
+  b->ArgNames({"model"});
+  for (int m = 0; m < 3; ++m) b->Args({m});
+}
+void ModelAngleNames(benchmark::internal::Benchmark* b) {
+  b->ArgNames({"model", "angle"});
+  for (int m = 0; m < 3; ++m) b->Args({m, 0});
+  b->Args({2, 60});
+}
+
+// model: 0 paper, 1 eps-linear, 2 smooth.
+BENCHMARK(BM_Naive)->Apply(ModelNames);
+BENCHMARK(BM_Library)->Apply(ModelNames);
+BENCHMARK(BM_SweepExact)->Apply(ModelAngleNames);
+BENCHMARK(BM_SweepTable)->Apply(ModelAngleNames);
+BENCHMARK(BM_SweepTableBuild)->Apply(ModelNames)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace alloycolor
+
+BENCHMARK_MAIN();

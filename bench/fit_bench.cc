@@ -1,0 +1,98 @@
+// Time of the smooth Ceres fit (fit/smooth_fit.h) against the size of the data, on the
+// bundled Au-Ag set (Rioux et al., 11 compositions, 1 nm data):
+//  - wavelengths: the fit grid over 360-830 nm at 5, 2.5 and 1.25 nm (95, 189, 377 nodes:
+//    1x, 2x, 4x), all 11 samples;
+//  - samples: 3 (x = 0, 0.5, 1), 6 (0, 0.2, ..., 1) and all 11 compositions (1x, 2x, 3.7x)
+//    on the 5 nm grid.
+// Both with the degree fixed at 2 and no covariance, so the figure is the Ceres solve itself;
+// BM_FitDefault is the program's default fit (degree by leave-one-out cross-validation up
+// to 6, covariance) on all samples and the 5 nm grid.
+#include <benchmark/benchmark.h>
+
+#include <string>
+#include <vector>
+
+#include "alloycolor/fit/smooth_fit.h"
+#include "alloycolor/model/dataset.h"
+#include "alloycolor/model/spectrum.h"
+
+namespace alloycolor {
+namespace {
+
+const Dataset& AuAg() {
+  static const Dataset dataset = LoadDataset(std::string(ALLOYCOLOR_DATA_DIR) + "/Au-Ag");
+  return dataset;
+}
+
+// The Au-Ag samples at the given compositions only.
+Dataset Subset(const std::vector<double>& keep) {
+  std::vector<double> exclude;
+  for (const Sample& s : AuAg().samples) {
+    bool kept = false;
+    for (double x : keep) kept |= std::abs(s.x_atomic - x) < 1e-9;
+    if (!kept) exclude.push_back(s.x_atomic);
+  }
+  return WithoutSamples(AuAg(), exclude);
+}
+
+void Fit(benchmark::State& state, const Dataset& dataset, double step_nm) {
+  fit::SmoothFitOptions options;
+  options.grid_nm = UniformGrid(360.0, 830.0, step_nm);
+  options.degree = 2;
+  options.covariance = false;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(fit::FitSmooth(dataset, options).model);
+  }
+  state.counters["samples"] = static_cast<double>(dataset.samples.size());
+  state.counters["wavelengths"] = static_cast<double>(options.grid_nm.size());
+}
+
+// range(0): wavelength multiple 1, 2, 4.
+void BM_FitWavelengths(benchmark::State& state) {
+  Fit(state, AuAg(), 5.0 / static_cast<double>(state.range(0)));
+}
+
+// range(0): 3, 6 or 11 samples.
+void BM_FitSamples(benchmark::State& state) {
+  const int count = static_cast<int>(state.range(0));
+  const Dataset dataset = count == 3   ? Subset({0.0, 0.5, 1.0})
+                          : count == 6 ? Subset({0.0, 0.2, 0.4, 0.6, 0.8, 1.0})
+                                       : AuAg();
+  Fit(state, dataset, 5.0);
+}
+
+void BM_FitDefault(benchmark::State& state) {
+  fit::SmoothFitOptions options;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(fit::FitSmooth(AuAg(), options).model);
+  }
+}
+
+BENCHMARK(BM_FitWavelengths)
+    ->ArgName("x")
+    ->Arg(1)
+    ->Arg(2)
+    ->Arg(4)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1)
+    ->Repetitions(3)
+    ->ReportAggregatesOnly();
+BENCHMARK(BM_FitSamples)
+    ->ArgName("samples")
+    ->Arg(3)
+    ->Arg(6)
+    ->Arg(11)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1)
+    ->Repetitions(3)
+    ->ReportAggregatesOnly();
+BENCHMARK(BM_FitDefault)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1)
+    ->Repetitions(3)
+    ->ReportAggregatesOnly();
+
+}  // namespace
+}  // namespace alloycolor
+
+BENCHMARK_MAIN();

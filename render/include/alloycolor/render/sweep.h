@@ -1,0 +1,90 @@
+// The colour of one alloy at many compositions, fast: the chain of material_color.h (n, k on
+// the colorimeter's grid -> Fresnel reflectance R = (Rs + Rp) / 2, eq. 2-4 -> XYZ, eq. 5)
+// with everything that does not depend on the composition x done once.
+//
+// Exact evaluation. The wavelengths are the colorimeter's 5 nm grid held inside the model's
+// range (EvaluationGrid), the weights its normalised P(l) xbar(l) etc. For the smooth model
+// (smooth_model.h) its coefficients are interpolated to that grid once, so a composition
+// costs the Legendre basis and, per wavelength, two short dot products, two exp (gamma and
+// wp^2 of eq. 7), eq. 13-14 and eq. 2-4, with no allocation. Other models are evaluated
+// through AlloyModel::Permittivity. The result equals MaterialXYZ(IndexOnGrid(...)) to
+// rounding (|dXYZ| < 1e-12).
+//
+// Table. For long sweeps, XYZ is tabulated against x at uniform nodes between breakpoints
+// (the ends of the sweep and the training compositions inside it, where the paper and
+// eps-linear models have kinks) and read by 4-point Lagrange (cubic) interpolation. The
+// table is refined until the largest error, measured against the exact XYZ at the midpoint
+// of every table interval, is at most the tolerance (default 1e-7 in X, Y and Z, each of
+// which lies in [0, ~1.1]); if that needs more than kSweepMaxTableNodes nodes, no table is
+// built and every composition is evaluated exactly.
+#ifndef ALLOYCOLOR_RENDER_SWEEP_H_
+#define ALLOYCOLOR_RENDER_SWEEP_H_
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "alloycolor/model/alloy_model.h"
+#include "alloycolor/render/colorimetry.h"
+
+namespace alloycolor {
+class SmoothModel;
+}  // namespace alloycolor
+
+namespace alloycolor::render {
+
+inline constexpr double kSweepTableTolerance = 1e-7;
+inline constexpr int kSweepMaxTableNodes = 1 << 20;
+
+class ColorSweep {
+ public:
+  // Keeps references to the colorimeter and the model, which must outlive it. Throws Error
+  // when the model does not cover the visible (as EvaluationGrid) or the angle lies outside
+  // 0-90 degrees.
+  ColorSweep(const Colorimeter& colorimeter, const AlloyModel& model, double angle_deg);
+
+  // XYZ at x_atomic, evaluated exactly (the caller checks the composition's range).
+  XYZ ExactXYZ(double x_atomic) const;
+
+  // Tabulates XYZ over [x_from, x_to] (either order). Returns false, and keeps no table,
+  // when the tolerance cannot be met within kSweepMaxTableNodes nodes, when the range is
+  // empty, or when the model gives a non-finite colour somewhere.
+  bool BuildTable(double x_from, double x_to, double tolerance = kSweepTableTolerance);
+  bool has_table() const { return !segments_.empty(); }
+  // The largest |dX|, |dY|, |dZ| measured at the interval midpoints while building.
+  double table_error() const { return table_error_; }
+  int table_nodes() const { return table_nodes_; }
+
+  // XYZ from the table for x inside its range (held at its ends outside), else exact.
+  XYZ XYZAt(double x_atomic) const;
+
+ private:
+  struct Segment {
+    double x_lo, x_hi, step;
+    std::vector<std::array<double, 3>> xyz;  // at x_lo + i * step, i = 0..intervals
+  };
+  XYZ SmoothXYZ(double x_atomic) const;
+  XYZ GenericXYZ(double x_atomic) const;
+  XYZ TableXYZ(double x_atomic) const;
+  static XYZ Interpolate(const Segment& segment, double x_atomic);
+  bool BuildSegment(double x_lo, double x_hi, int intervals, double tolerance, Segment* segment,
+                    double* error) const;
+
+  const Colorimeter& colorimeter_;
+  const AlloyModel& model_;
+  const SmoothModel* smooth_ = nullptr;
+  double cos_psi_ = 1.0;
+  bool normal_ = true;
+  std::vector<double> grid_nm_;  // colorimeter grid held inside the model's range
+  // Smooth model on the grid: per wavelength, 2 (degree + 1) coefficients and omega (eV).
+  int basis_size_ = 0;
+  std::vector<double> coeffs_;
+  std::vector<double> omega_ev_;
+  std::vector<Segment> segments_;
+  double table_error_ = 0.0;
+  int table_nodes_ = 0;
+};
+
+}  // namespace alloycolor::render
+
+#endif  // ALLOYCOLOR_RENDER_SWEEP_H_

@@ -1,0 +1,424 @@
+// The physical model and its Ceres fit: the term forms against published references and
+// analytic limits, the cost's Jacobian against finite differences, recovery of known
+// parameters within their reported uncertainty, the shipped Au-Ag and Nb-Sn sets, the JSON
+// round trip and damaged files, and the `params` command.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <complex>
+#include <random>
+
+#include "alloycolor/fit/physical_costs.h"
+#include "alloycolor/fit/physical_fit.h"
+#include "alloycolor/model/dataset.h"
+#include "alloycolor/model/error.h"
+#include "alloycolor/model/io.h"
+#include "alloycolor/model/physical_model.h"
+#include "alloycolor/model/units.h"
+#include "test_util.h"
+
+namespace alloycolor {
+namespace {
+
+using testing::DataDir;
+using testing::MakeTempDir;
+using testing::RunProgram;
+using testing::WriteText;
+
+constexpr double kPi = 3.14159265358979323846;
+
+std::complex<double> Std(const Complex<double>& z) { return {z.re, z.im}; }
+
+// Rioux et al. 2014's own parameters for Au (their published code): drude + rioux-gap +
+// rioux-edge reproduces the shipped Au sample, which is that model's output.
+TEST(PhysicalModel, RiouxTermsReproduceThePublishedGoldModel) {
+  const PhysicalLayout layout({TermKind::kRiouxGap, TermKind::kRiouxEdge}, 0);
+  // eps_inf, wp, gamma; A, E0 (omega_0), Eg (omega_g), G; A, E0, G.
+  const double gold[10] = {2.2715, 8.9234, 0.042389, 73.251, 2.3957, 2.6652,
+                           0.17880, 40.007, 3.5362, 0.35467};
+  const NkSpectrum au = ReadNkFile(DataDir() + "/Au-Ag/Rioux-Au100Ag0.yml");
+  for (double lambda = 300; lambda <= 1000; lambda += 1) {
+    const Complex<double> nk = IndexFromPermittivity(
+        PhysicalPermittivity(layout, gold, OmegaEvFromLambdaNm(lambda)));
+    const std::complex<double> data = NkAt(au, lambda);
+    EXPECT_NEAR(nk.re, data.real(), 2e-5) << lambda;
+    EXPECT_NEAR(nk.im, data.imag(), 2e-5) << lambda;
+  }
+}
+
+TEST(PhysicalModel, TermsMeetTheirAnalyticLimits) {
+  // Lorentz at resonance: i A E0 / G; static limit A.
+  const double lorentz[3] = {1.5, 2.0, 0.25};
+  const Complex<double> at_e0 = InterbandPermittivity(TermKind::kLorentz, lorentz, 2.0);
+  EXPECT_NEAR(at_e0.re, 0.0, 1e-12);
+  EXPECT_NEAR(at_e0.im, 1.5 * 2.0 / 0.25, 1e-12);
+  EXPECT_NEAR(InterbandPermittivity(TermKind::kLorentz, lorentz, 1e-9).re, 1.5, 1e-6);
+  // Etchegoin's critical point: real at w -> 0 (causality), absorbing above its centre
+  // with his phase -pi/4.
+  const double cp[4] = {1.27, 2.64, 0.65, -kPi / 4};
+  EXPECT_NEAR(InterbandPermittivity(TermKind::kCriticalPoint, cp, 1e-9).im, 0.0, 1e-8);
+  EXPECT_GT(InterbandPermittivity(TermKind::kCriticalPoint, cp, 2.64).im, 0.0);
+  // Rioux's edge: eps2 -> A pi / (2 w^2) well above the onset as G -> 0, 0 below it.
+  const double edge[3] = {40.0, 2.0, 1e-6};
+  EXPECT_NEAR(InterbandPermittivity(TermKind::kRiouxEdge, edge, 3.0).im, 40.0 * kPi / 18.0,
+              1e-4);
+  EXPECT_NEAR(InterbandPermittivity(TermKind::kRiouxEdge, edge, 1.0).im, 0.0, 1e-4);
+  // Drude term: eq. 7.
+  const double drude[3] = {1.0, 9.0, 0.07};
+  const Complex<double> d = TermPermittivity(TermKind::kDrude, drude, 2.0);
+  const Complex<double> expected = DrudePermittivity(2.0, 81.0, 0.07, 1.0);
+  EXPECT_DOUBLE_EQ(d.re, expected.re);
+  EXPECT_DOUBLE_EQ(d.im, expected.im);
+}
+
+TEST(PhysicalModel, ParametersStayPositiveAndOrderedForAnyCoefficients) {
+  const PhysicalLayout layout({TermKind::kCriticalPoint, TermKind::kCriticalPoint,
+                               TermKind::kRiouxGap},
+                              2);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> uniform(-5.0, 5.0);
+  const int np = layout.num_parameters();
+  for (int trial = 0; trial < 200; ++trial) {
+    std::vector<double> coeffs(layout.num_coefficients());
+    for (double& c : coeffs) c = uniform(rng);
+    for (double u : {-1.0, -0.3, 0.4, 1.0}) {
+      double basis[3], raw[kPhysicalMaxParameters], v[kPhysicalMaxParameters];
+      LegendreBasis(u, 2, basis);
+      PhysicalRawFromCoefficients(layout, coeffs.data(), basis, raw);
+      PhysicalValuesFromRaw(layout, raw, v);
+      for (int k = 0; k < np; ++k) {
+        const PhysicalParameter& p = layout.parameters()[k];
+        if (p.map != ParameterMap::kFree) EXPECT_GT(v[k], 0.0) << p.name;
+      }
+      EXPECT_GE(v[0], 1.0);  // eps_inf
+      const int e1 = layout.Find(1, "E0_eV"), e2 = layout.Find(2, "E0_eV");
+      EXPECT_GT(v[e2], v[e1]);
+      EXPECT_GT(v[layout.Find(3, "Eg_eV")], v[layout.Find(3, "E0_eV")]);
+    }
+  }
+  EXPECT_NEAR(SoftPositive(SoftPositiveInverse(0.02)), 0.02, 1e-15);
+}
+
+TEST(PhysicalCosts, JacobianMatchesFiniteDifferences) {
+  const PhysicalLayout layout({TermKind::kRiouxGap, TermKind::kRiouxEdge,
+                               TermKind::kCriticalPoint, TermKind::kLorentz,
+                               TermKind::kCriticalPoint},
+                              2);
+  std::vector<double> omega;
+  std::vector<std::complex<double>> eps;
+  for (double lambda = 300; lambda <= 1000; lambda += 70) {
+    omega.push_back(OmegaEvFromLambdaNm(lambda));
+    eps.push_back({-20.0 + lambda / 100.0, 1.5 + lambda / 1000.0});
+  }
+  const double basis[3] = {1.0, 0.3, -0.365};
+  std::unique_ptr<ceres::CostFunction> cost(
+      fit::CreatePhysicalSampleCost(layout, basis, omega, eps));
+  const int nc = layout.num_coefficients();
+  const int nr = 2 * static_cast<int>(omega.size());
+  std::vector<double> c(nc);
+  for (int k = 0; k < layout.num_parameters(); ++k) {
+    c[k * 3] = 0.5 + 0.1 * k;
+    c[k * 3 + 1] = 0.05 * (k % 3) - 0.04;
+    c[k * 3 + 2] = 0.02;
+  }
+  std::vector<double> residual(nr), jacobian(nr * nc), plus(nr), minus(nr);
+  const double* blocks[1] = {c.data()};
+  double* jacobians[1] = {jacobian.data()};
+  ASSERT_TRUE(cost->Evaluate(blocks, residual.data(), jacobians));
+  // The residuals without Jacobian (double path) equal those with it (Jet path).
+  ASSERT_TRUE(cost->Evaluate(blocks, plus.data(), nullptr));
+  for (int r = 0; r < nr; ++r) EXPECT_NEAR(plus[r], residual[r], 1e-12);
+  for (int j = 0; j < nc; ++j) {
+    const double h = 1e-6;
+    std::vector<double> cp = c, cm = c;
+    cp[j] += h;
+    cm[j] -= h;
+    const double* bp[1] = {cp.data()};
+    const double* bm[1] = {cm.data()};
+    ASSERT_TRUE(cost->Evaluate(bp, plus.data(), nullptr));
+    ASSERT_TRUE(cost->Evaluate(bm, minus.data(), nullptr));
+    for (int r = 0; r < nr; ++r) {
+      const double numeric = (plus[r] - minus[r]) / (2 * h);
+      EXPECT_NEAR(jacobian[r * nc + j], numeric, 1e-6 * (1 + std::abs(numeric)))
+          << "residual " << r << ", coefficient " << j;
+    }
+  }
+}
+
+// Synthetic data from known parameters: values at x = 0, 0.5, 1, quadratic in r.
+struct Truth {
+  PhysicalLayout layout{{TermKind::kCriticalPoint, TermKind::kCriticalPoint}, 2};
+  std::vector<double> coeffs;
+  Truth() {
+    // eps_inf, wp, gamma; A, E0, G, phi; A, E0, G, phi at x = 0, 0.5, 1 (an Ag-like metal
+    // turning into Etchegoin's gold).
+    const double values[3][11] = {
+        {1.8, 9.0, 0.03, 0.8, 3.6, 0.3, -0.6, 1.0, 4.0, 0.8, -0.785},
+        {1.6, 8.8, 0.12, 1.0, 3.0, 0.55, -0.7, 1.05, 3.9, 1.0, -0.785},
+        {1.54, 8.55, 0.073, 1.27, 2.64, 0.65, -0.785, 1.1, 3.82, 1.17, -0.785}};
+    const int np = layout.num_parameters();
+    double raw[3][11];
+    for (int i = 0; i < 3; ++i) {
+      for (int k = 0; k < np; ++k) {
+        const PhysicalParameter& p = layout.parameters()[k];
+        switch (p.map) {
+          case ParameterMap::kPositive: raw[i][k] = SoftPositiveInverse(values[i][k]); break;
+          case ParameterMap::kOnePlusPositive:
+            raw[i][k] = SoftPositiveInverse(values[i][k] - 1);
+            break;
+          case ParameterMap::kAbove:
+            raw[i][k] = SoftPositiveInverse(values[i][k] - values[i][p.reference]);
+            break;
+          case ParameterMap::kFree: raw[i][k] = values[i][k]; break;
+        }
+      }
+    }
+    // Legendre coefficients through u = -1, 0, 1: c0 = (f- + 4 f0 + f+)/6 - ..., solved
+    // directly: P0 = 1, P1 = u, P2 = (3u^2 - 1)/2.
+    coeffs.resize(layout.num_coefficients());
+    for (int k = 0; k < np; ++k) {
+      const double fm = raw[0][k], f0 = raw[1][k], fp = raw[2][k];
+      const double c2 = (fm + fp - 2 * f0) / 3.0;
+      coeffs[k * 3] = f0 + c2 / 2.0;
+      coeffs[k * 3 + 1] = (fp - fm) / 2.0;
+      coeffs[k * 3 + 2] = c2;
+    }
+  }
+  std::vector<double> ValuesAt(double x) const {
+    double basis[3], raw[kPhysicalMaxParameters];
+    LegendreBasis(2 * x - 1, 2, basis);
+    PhysicalRawFromCoefficients(layout, coeffs.data(), basis, raw);
+    std::vector<double> v(layout.num_parameters());
+    PhysicalValuesFromRaw(layout, raw, v.data());
+    return v;
+  }
+};
+
+std::string WriteSyntheticDataset(const Truth& truth, const std::vector<double>& xs,
+                                  double noise) {
+  const std::string dir = MakeTempDir();
+  std::mt19937 rng(20261122);
+  std::normal_distribution<double> normal(0.0, noise);
+  std::string samples;
+  for (size_t i = 0; i < xs.size(); ++i) {
+    const std::vector<double> v = truth.ValuesAt(xs[i]);
+    std::vector<double> l, n, k;
+    for (double lambda = 300; lambda <= 1000 + 1e-9; lambda += 5) {
+      Complex<double> eps = PhysicalPermittivity(truth.layout, v.data(), OmegaEvFromLambdaNm(lambda));
+      const double scale = std::sqrt(Norm2(eps));
+      eps = {eps.re + scale * normal(rng), eps.im + scale * normal(rng)};
+      const Complex<double> nk = IndexFromPermittivity(eps);
+      l.push_back(lambda);
+      n.push_back(nk.re);
+      k.push_back(nk.im);
+    }
+    const std::string file = "s" + std::to_string(i) + ".csv";
+    WriteText(dir + "/" + file, NkCsvText(l, n, k));
+    samples += (i ? "," : "") + std::string("{\"x\": ") + std::to_string(xs[i]) +
+               ", \"file\": \"" + file + "\"}";
+  }
+  WriteText(dir + "/dataset.json",
+            "{\"system\": {\"a\": \"Au\", \"b\": \"Ag\"}, \"composition\": \"atomic_fraction_a\", "
+            "\"samples\": [" + samples + "]}");
+  return dir;
+}
+
+TEST(PhysicalFit, RecoversKnownParametersWithinTheirUncertainty) {
+  const Truth truth;
+  const Dataset data =
+      LoadDataset(WriteSyntheticDataset(truth, {0.0, 0.2, 0.4, 0.6, 0.8, 1.0}, 2e-4));
+  fit::PhysicalFitOptions options;
+  options.terms = "cp,cp";
+  const auto result = fit::FitPhysical(data, options);
+  const PhysicalModel& model = *result.model;
+  ASSERT_TRUE(model.fit_statistics()["converged"].get<bool>());
+  ASSERT_TRUE(model.HasUncertainty());
+  const int nc = model.layout().num_coefficients();
+  for (int j = 0; j < nc; ++j) {
+    const double sigma = std::sqrt(model.covariance()[static_cast<size_t>(j) * nc + j]);
+    EXPECT_GT(sigma, 0.0);
+    EXPECT_LT(std::abs(model.coeffs()[j] - truth.coeffs[j]), 4 * sigma)
+        << "coefficient " << j << " (" << model.layout().parameters()[j / 3].name << ")";
+  }
+  for (double x : {0.0, 0.3, 0.5, 0.9}) {
+    const std::vector<double> v = truth.ValuesAt(x);
+    const auto fitted = model.ParameterValues(x);
+    for (size_t k = 0; k < v.size(); ++k) {
+      EXPECT_LT(std::abs(fitted[k].value - v[k]), 4 * fitted[k].sigma)
+          << fitted[k].name << " of term " << fitted[k].term << " at x = " << x;
+      EXPECT_LT(fitted[k].sigma, 0.05 * std::abs(v[k]) + 0.01) << fitted[k].name;
+    }
+  }
+}
+
+// The shipped Au-Ag set, fitted once for several tests.
+class AuAg : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dataset_ = new Dataset(LoadDataset(DataDir() + "/Au-Ag"));
+    model_ = fit::FitPhysical(*dataset_, fit::PhysicalFitOptions{}).model.release();
+  }
+  static void TearDownTestSuite() {
+    delete model_;
+    delete dataset_;
+  }
+  static Dataset* dataset_;
+  static PhysicalModel* model_;
+};
+Dataset* AuAg::dataset_ = nullptr;
+PhysicalModel* AuAg::model_ = nullptr;
+
+TEST_F(AuAg, ReproducesEverySampleFrom300To1000nm) {
+  EXPECT_EQ(model_->fit_statistics()["terms"], "rioux-gap,rioux-edge");
+  EXPECT_EQ(model_->lambda_min_nm(), 300.0);
+  EXPECT_EQ(model_->lambda_max_nm(), 1000.0);
+  ASSERT_EQ(dataset_->samples.size(), 11u);
+  for (const Sample& s : dataset_->samples) {
+    std::vector<double> grid;
+    for (double l : s.nk.lambda_nm) {
+      if (l >= 300 - 1e-9 && l <= 1000 + 1e-9) grid.push_back(l);
+    }
+    const auto index = model_->Index(s.x_atomic, grid);
+    double dn = 0, dk = 0;
+    for (size_t i = 0; i < grid.size(); ++i) {
+      const std::complex<double> data = NkAt(s.nk, grid[i]);
+      dn = std::max(dn, std::abs(index[i].real() - data.real()));
+      dk = std::max(dk, std::abs(index[i].imag() - data.imag()));
+    }
+    EXPECT_LT(dn, 0.01) << s.file;
+    EXPECT_LT(dk, 0.01) << s.file;
+  }
+  // Physical and finite, with uncertainties, everywhere in between.
+  for (double x = 0; x <= 1.0 + 1e-9; x += 0.05) {
+    for (const auto& v : model_->ParameterValues(x)) {
+      EXPECT_TRUE(std::isfinite(v.value) && std::isfinite(v.sigma)) << v.name;
+      if (v.name != "phi_rad") EXPECT_GT(v.value, 0.0) << v.name << " at x = " << x;
+    }
+  }
+}
+
+TEST_F(AuAg, FileReadsBackWithIdenticalPredictionsAndBytes) {
+  const std::string text = ModelFileText(*model_);
+  const auto back = ModelFromJson(nlohmann::json::parse(text), "mem");
+  EXPECT_EQ(back->method(), "physical");
+  EXPECT_TRUE(ModelFileText(*back) == text);
+  const std::vector<double> grid = UniformGrid(300, 1000, 2.5);
+  for (double x : {0.0, 0.37, 1.0}) {
+    EXPECT_EQ(back->Permittivity(x, grid), model_->Permittivity(x, grid));
+    EXPECT_EQ(back->PermittivityDraws(x, grid, 4, 7u), model_->PermittivityDraws(x, grid, 4, 7u));
+  }
+  // The same inputs give the same bytes.
+  EXPECT_TRUE(ModelFileText(*fit::FitPhysical(*dataset_, fit::PhysicalFitOptions{}).model) ==
+              text);
+}
+
+// Expects ModelFromJson to refuse the document with a message naming `field`.
+void ExpectRefused(const nlohmann::json& doc, const std::string& field) {
+  try {
+    ModelFromJson(doc, "mem");
+    ADD_FAILURE() << "accepted a damaged " << field;
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_EQ(what.rfind("mem: ", 0), 0u) << what;
+    EXPECT_NE(what.find(field), std::string::npos) << what;
+  }
+}
+
+TEST_F(AuAg, DamagedFieldsAreNamed) {
+  const nlohmann::json doc = nlohmann::json::parse(ModelFileText(*model_));
+  nlohmann::json d = doc;
+  d["parameters"]["terms"][1]["kind"] = "quadrupole";
+  ExpectRefused(d, "parameters.terms[1].kind");
+  d = doc;
+  d["parameters"]["terms"][0]["parameters"][1]["coefficients"] = {1.0, 2.0};
+  ExpectRefused(d, "parameters.terms[0].parameters[1].coefficients");
+  d = doc;
+  d["parameters"]["terms"][2]["parameters"][0]["coefficients"][0] = "many";
+  ExpectRefused(d, "parameters.terms[2].parameters[0].coefficients[0]");
+  d = doc;
+  d["parameters"]["terms"][1]["parameters"][1]["name"] = "E1_eV";
+  ExpectRefused(d, "parameters.terms[1].parameters[1].name");
+  d = doc;
+  d["parameters"].erase("degree");
+  ExpectRefused(d, "parameters: missing field 'degree'");
+  d = doc;
+  d["parameters"]["covariance"] = {1.0, 2.0, 3.0};
+  ExpectRefused(d, "parameters.covariance");
+  d = doc;
+  d["parameters"]["terms"][0]["kind"] = "cp";
+  ExpectRefused(d, "parameters.terms[0].kind");
+}
+
+TEST(PhysicalFit, NbSnInfraredDrudeGivesTauAndMassAgainstComposition) {
+  const Dataset data = LoadDataset(DataDir() + "/Nb-Sn");
+  const auto result = fit::FitPhysical(data, fit::PhysicalFitOptions{});
+  EXPECT_EQ(result.terms, "none");
+  const PhysicalModel& model = *result.model;
+  EXPECT_GE(model.lambda_min_nm(), 1000.0);
+  for (const Sample& s : data.samples) {
+    const auto values = model.ParameterValues(s.x_atomic);
+    const auto& wp = values[model.layout().Find(0, "wp_eV")];
+    const auto& gamma = values[model.layout().Find(0, "gamma_eV")];
+    const double tau_fs = TauFsFromGammaEv(gamma.value);
+    const double mass = kPlasmaEv2M3 * FreeElectronDensityM3(s.x_atomic, data.system) /
+                        (wp.value * wp.value);
+    EXPECT_TRUE(tau_fs > 0.1 && tau_fs < 100) << s.file << ": tau " << tau_fs << " fs";
+    EXPECT_TRUE(mass > 0.05 && mass < 50) << s.file << ": m* " << mass;
+    EXPECT_TRUE(std::isfinite(wp.sigma) && wp.sigma > 0) << s.file;
+    EXPECT_TRUE(std::isfinite(gamma.sigma) && gamma.sigma > 0) << s.file;
+  }
+}
+
+TEST(PhysicalFit, BadOptionsAreNamed) {
+  const Dataset data = LoadDataset(DataDir() + "/Nb-Sn");
+  fit::PhysicalFitOptions options;
+  options.terms = "cp,quadrupole";
+  EXPECT_THROW(fit::FitPhysical(data, options), Error);
+  options.terms = "none";
+  options.lambda_from_nm = 300;
+  options.lambda_to_nm = 1000;
+  try {
+    fit::FitPhysical(data, options);
+    ADD_FAILURE() << "fitted outside the data";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("Golovashkin"), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(AuAg, ParamsCommandPrintsTheParametersAgainstComposition) {
+  const std::string dir = MakeTempDir();
+  WriteText(dir + "/auag.json", ModelFileText(*model_));
+  const auto text = RunProgram({"params", "--model", dir + "/auag.json"});
+  ASSERT_EQ(text.status, 0) << text.err;
+  for (const char* column : {"wp_eV", "gamma_eV", "tau_fs", "N_e_m^-3", "m*/m_e", "eps_inf",
+                             "t1:E0_eV", "t1:E0_nm", "t1:Eg_eV", "t2:G_eV"}) {
+    EXPECT_NE(text.out.find(column), std::string::npos) << column;
+  }
+  EXPECT_NE(text.out.find("±"), std::string::npos);
+  const auto json = RunProgram({"params", "--model", dir + "/auag.json", "--format", "json",
+                                "--from", "0.25", "--to", "0.75", "--steps", "3"});
+  ASSERT_EQ(json.status, 0) << json.err;
+  const auto out = nlohmann::json::parse(json.out);
+  ASSERT_EQ(out["rows"].size(), 3u);
+  EXPECT_DOUBLE_EQ(out["rows"][1]["x"].get<double>(), 0.5);
+  EXPECT_GT(out["rows"][1]["tau_fs"]["value"].get<double>(), 0.0);
+  EXPECT_GT(out["rows"][1]["terms"][0]["E0_nm"]["value"].get<double>(), 300.0);
+  // The infrared set through the command line: fit, then params.
+  const auto fitted = RunProgram({"fit", "--data", DataDir() + "/Nb-Sn", "--method",
+                                  "physical", "--out", dir + "/nbsn.json", "--quiet"});
+  ASSERT_EQ(fitted.status, 0) << fitted.err;
+  const auto nbsn = RunProgram({"params", "--model", dir + "/nbsn.json", "--steps", "5"});
+  ASSERT_EQ(nbsn.status, 0) << nbsn.err;
+  EXPECT_NE(nbsn.out.find("drude only"), std::string::npos) << nbsn.out;
+  // Models without physical parameters, and bad terms, are refused with a clear message.
+  const auto paper = RunProgram({"params", "--data", DataDir() + "/Au-Ag", "--method", "paper"});
+  EXPECT_EQ(paper.status, 2);
+  EXPECT_NE(paper.err.find("no fitted physical parameters"), std::string::npos) << paper.err;
+  const auto bad = RunProgram({"fit", "--data", DataDir() + "/Nb-Sn", "--method", "physical",
+                               "--terms", "cp,quadrupole", "--out", dir + "/x.json"});
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.err.find("unknown term kind 'quadrupole'"), std::string::npos) << bad.err;
+}
+
+}  // namespace
+}  // namespace alloycolor

@@ -25,6 +25,17 @@ $ac fit --data out/paper-samples.json --method smooth --out out/au-ag-smooth.jso
 echo "== Predicted colours of Au 75 % and 55 % (atomic) and 18k, 14k (smooth model)"
 $ac color --model out/au-ag-smooth.json --x 0.75,0.55,18k,14k
 
-echo "== Smooth fit to all 11 Au-Ag samples -> out/au-ag-all.json"
+echo "== Pictures of Au 75 % and 55 % (atomic; then 75 and 55 wt%) from the smooth model -> out/*.png"
+$ac render --model out/au-ag-smooth.json --x 0.75,0.55 --out out/au75-au55-sphere.png
+$ac render --model out/au-ag-smooth.json --x 0.75,0.55 --shape ring --out out/au75-au55-ring.png
+$ac render --model out/au-ag-smooth.json --x 75wt%,55wt% --out out/au75wt-au55wt-sphere.png
+
+echo "== Validation on the paper's split: train on Au 0, 20, 50, 60, 80, 100 %, predict the rest -> out/report-paper-split/"
+$ac validate --data Au-Ag --holdout 0.1,0.3,0.4,0.7,0.9 --methods paper,eps-linear,smooth,physical \
+  --angles 0,45 --out out/report-paper-split
+
+echo "== Smooth fit to all 11 Au-Ag samples -> out/au-ag-all.json, and its composition chart"
 $ac fit --data Au-Ag --out out/au-ag-all.json --quiet
-$ac color --model out/au-ag-all.json --x 0,0.25,0.5,0.75,1 --quiet
+$ac chart --model out/au-ag-all.json --from 0 --to 1 --steps 11 --out out/au-ag-chart.svg
+$ac chart --model out/au-ag-all.json --from 0 --to 1 --steps 11 --out out/au-ag-chart.png
+echo "Open out/report-paper-split/report.html in a browser for the full report."

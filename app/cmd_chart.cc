@@ -101,10 +101,7 @@ void RegisterChart(CLI::App& app) {
   cmd->add_option("--steps", o->steps, "Number of swatches")->capture_default_str();
   cmd->add_option("--angle", o->angle_deg, "Angle of incidence in degrees (0-90)")
       ->capture_default_str();
-  cmd->add_option("--illuminant", o->illuminant, "CIE illuminant: A, C, D50, D65, E, F2, F11")
-      ->capture_default_str();
-  cmd->add_option("--observer", o->observer, "CIE observer: 2 (1931) or 10 (1964)")
-      ->capture_default_str();
+  AddColorimetryOptions(cmd, &o->illuminant, &o->observer);
   cmd->add_option("--labels", o->labels,
                   "Label compositions in atomic or weight percent (default: as the data "
                   "set's manifest)");

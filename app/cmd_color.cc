@@ -134,10 +134,7 @@ void RegisterColor(CLI::App& app) {
                   "75at%, 75wt%, 18k");
   cmd->add_option("--angle", o->angle_deg, "Angle of incidence in degrees (0-90)")
       ->capture_default_str();
-  cmd->add_option("--illuminant", o->illuminant, "CIE illuminant: A, C, D50, D65, E, F2, F11")
-      ->capture_default_str();
-  cmd->add_option("--observer", o->observer, "CIE observer: 2 (1931) or 10 (1964)")
-      ->capture_default_str();
+  AddColorimetryOptions(cmd, &o->illuminant, &o->observer);
   cmd->add_flag("--json", o->json, "Print one JSON object");
   cmd->add_flag("--quiet", o->quiet, "No warnings or progress on stderr");
   cmd->callback([o]() { Run(*o); });

@@ -39,15 +39,6 @@ std::string Identifier(const std::string& text) {
   return id;
 }
 
-// Refuses an output path whose folder does not exist before any work is done.
-void CheckOutputFolder(const std::string& path, const std::string& option) {
-  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
-  std::error_code ec;
-  if (!folder.empty() && !std::filesystem::is_directory(folder, ec)) {
-    throw Error(option + ": folder '" + folder.string() + "' does not exist");
-  }
-}
-
 void Run(const ExportOptions& o) {
   if (o.format != "spd") {
     throw Error("--format: unknown format '" + o.format + "' (spd: pbrt-v4 and Mitsuba 3)");

@@ -225,7 +225,8 @@ void RegisterFit(CLI::App& app) {
   cmd->add_option("--lambda-from", o->lambda_from,
                   "smooth, physical: first wavelength of the fit grid, nm (physical default: "
                   "the common range within 300-1000 nm, or all of it for infrared data)");
-  cmd->add_option("--lambda-to", o->lambda_to, "smooth, physical: last wavelength of the fit grid, nm");
+  cmd->add_option("--lambda-to", o->lambda_to,
+                  "smooth, physical: last wavelength of the fit grid, nm");
   cmd->add_option("--lambda-step", o->lambda_step,
                   "smooth, physical: grid step, nm (physical default: 5, or range/200 in the "
                   "infrared)")

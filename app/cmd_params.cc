@@ -101,7 +101,8 @@ void RunPhysical(const PhysicalModel& model, const std::vector<double>& xs, bool
       return Quantity{values[k].value, values[k].sigma};
     };
     const Quantity wp = get(0, "wp_eV"), gamma = get(0, "gamma_eV"), eps_inf = get(0, "eps_inf");
-    const Quantity tau{TauFsFromGammaEv(gamma.value), kHbarEvFs * gamma.sigma / (gamma.value * gamma.value)};
+    const Quantity tau{TauFsFromGammaEv(gamma.value),
+                       kHbarEvFs * gamma.sigma / (gamma.value * gamma.value)};
     const double n_e = FreeElectronDensityM3(x, model.system());
     const double m = EffectiveMass(n_e, wp.value);
     const Quantity mass{m, 2.0 * m * wp.sigma / wp.value};
@@ -109,13 +110,9 @@ void RunPhysical(const PhysicalModel& model, const std::vector<double>& xs, bool
     std::snprintf(xbuf, sizeof xbuf, "%.4g", x);
     char nbuf[32];
     std::snprintf(nbuf, sizeof nbuf, "%.4e", n_e);
-    std::vector<std::string> row = {xbuf,
-                                    Text(wp, with_sigma),
-                                    Text(gamma, with_sigma),
-                                    Text(tau, with_sigma),
-                                    nbuf,
-                                    Text(mass, with_sigma),
-                                    Text(eps_inf, with_sigma)};
+    std::vector<std::string> row = {
+        xbuf, Text(wp, with_sigma),   Text(gamma, with_sigma),  Text(tau, with_sigma),
+        nbuf, Text(mass, with_sigma), Text(eps_inf, with_sigma)};
     nlohmann::json jrow = {{"x", x},
                            {"x_weight", WeightFromAtomicFraction(x, model.system())},
                            {"wp_eV", ToJson(wp)},
@@ -131,12 +128,14 @@ void RunPhysical(const PhysicalModel& model, const std::vector<double>& xs, bool
         if (v.term == t) jt[v.name] = ToJson(Quantity{v.value, v.sigma});
       }
       const Quantity e0 = get(t, "E0_eV");
-      const Quantity e0_nm{LambdaNmFromOmegaEv(e0.value), kHcEvNm * e0.sigma / (e0.value * e0.value)};
+      const Quantity e0_nm{LambdaNmFromOmegaEv(e0.value),
+                           kHcEvNm * e0.sigma / (e0.value * e0.value)};
       jt["E0_nm"] = ToJson(e0_nm);
       jterms.push_back(jt);
       row.push_back(Text(e0, with_sigma));
       row.push_back(Text(e0_nm, with_sigma));
-      if (layout.term_kind(t) == TermKind::kRiouxGap) row.push_back(Text(get(t, "Eg_eV"), with_sigma));
+      if (layout.term_kind(t) == TermKind::kRiouxGap)
+        row.push_back(Text(get(t, "Eg_eV"), with_sigma));
       row.push_back(Text(get(t, "G_eV"), with_sigma));
     }
     jrow["terms"] = jterms;
@@ -144,21 +143,22 @@ void RunPhysical(const PhysicalModel& model, const std::vector<double>& xs, bool
     rows.push_back(row);
   }
   if (json) {
-    nlohmann::json out = {{"system", model.system().Name()},
-                          {"method", model.method()},
-                          {"terms", InterbandTermsText(layout.interband())},
-                          {"degree", layout.degree()},
-                          {"uncertainty", with_sigma ? "one sigma from the fit's covariance" : "none"},
-                          {"rows", out_rows}};
+    nlohmann::json out = {
+        {"system", model.system().Name()},
+        {"method", model.method()},
+        {"terms", InterbandTermsText(layout.interband())},
+        {"degree", layout.degree()},
+        {"uncertainty", with_sigma ? "one sigma from the fit's covariance" : "none"},
+        {"rows", out_rows}};
     std::cout << out.dump(1) << "\n";
     return;
   }
   std::cout << "# physical model of " << model.system().Name() << ": drude"
             << (layout.interband().empty() ? " only"
                                            : " + " + InterbandTermsText(layout.interband()))
-            << ", degree " << layout.degree()
-            << ", fitted " << model.lambda_min_nm() << "-" << model.lambda_max_nm()
-            << " nm; x = atomic fraction of " << model.system().a.symbol << "\n";
+            << ", degree " << layout.degree() << ", fitted " << model.lambda_min_nm() << "-"
+            << model.lambda_max_nm() << " nm; x = atomic fraction of " << model.system().a.symbol
+            << "\n";
   std::cout << "# tau = hbar / gamma; m*/m_e = e^2 hbar^2 N_e / (eps0 m_e (hbar wp)^2); "
             << (with_sigma ? "value±sigma (one sigma)" : "no covariance in the model") << "\n";
   std::cout << ElementsLine(model.system());
@@ -203,9 +203,8 @@ void RunSmooth(const SmoothModel& model, const std::vector<double>& xs, bool jso
     std::snprintf(xbuf, sizeof xbuf, "%.4g", x);
     std::snprintf(nbuf, sizeof nbuf, "%.4e", n_e);
     std::vector<std::string> row = {xbuf, nbuf};
-    nlohmann::json jrow = {{"x", x},
-                           {"x_weight", WeightFromAtomicFraction(x, model.system())},
-                           {"N_e_m3", n_e}};
+    nlohmann::json jrow = {
+        {"x", x}, {"x_weight", WeightFromAtomicFraction(x, model.system())}, {"N_e_m3", n_e}};
     nlohmann::json jl = nlohmann::json::array();
     for (size_t i = 0; i < lambda.size(); ++i) {
       const double omega = OmegaEvFromLambdaNm(lambda[i]);
@@ -245,9 +244,8 @@ void RunSmooth(const SmoothModel& model, const std::vector<double>& xs, bool jso
     std::cout << out.dump(1) << "\n";
     return;
   }
-  std::cout << "# smooth model of " << model.system().Name() << ": tau and m* at "
-            << lambda.size() << " wavelengths; x = atomic fraction of "
-            << model.system().a.symbol << "\n";
+  std::cout << "# smooth model of " << model.system().Name() << ": tau and m* at " << lambda.size()
+            << " wavelengths; x = atomic fraction of " << model.system().a.symbol << "\n";
   std::cout << "# tau = hbar / gamma; m*/m_e = e^2 hbar^2 N_e / (eps0 m_e (hbar wp)^2); "
             << (with_sigma ? "value±sigma (one sigma, from draws of the covariance)"
                            : "no covariance in the model")
@@ -269,11 +267,10 @@ void Run(const ParamsOptions& o) {
                 " model has no fitted physical parameters; give a physical or smooth model "
                 "(alloycolor fit --method physical)");
   }
-  const double from = o.from_text.empty()
-                          ? model->x_min()
-                          : ParseCompositions(o.from_text, model->system()).at(0);
-  const double to = o.to_text.empty() ? model->x_max()
-                                      : ParseCompositions(o.to_text, model->system()).at(0);
+  const double from =
+      o.from_text.empty() ? model->x_min() : ParseCompositions(o.from_text, model->system()).at(0);
+  const double to =
+      o.to_text.empty() ? model->x_max() : ParseCompositions(o.to_text, model->system()).at(0);
   CheckComposition(*model, from, o.source.extrapolate);
   CheckComposition(*model, to, o.source.extrapolate);
   std::vector<double> xs;

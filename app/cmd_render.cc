@@ -53,15 +53,6 @@ std::string Format(const char* format, double value) {
   return buf;
 }
 
-// Refuses an output path whose folder does not exist before any work is done.
-void CheckOutputFolder(const std::string& path, const std::string& option) {
-  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
-  std::error_code ec;
-  if (!folder.empty() && !std::filesystem::is_directory(folder, ec)) {
-    throw Error(option + ": folder '" + folder.string() + "' does not exist");
-  }
-}
-
 render::RenderOptions CheckedOptions(const RenderCommandOptions& o) {
   render::RenderOptions options;
   try {
@@ -249,10 +240,7 @@ void RegisterRender(CLI::App& app) {
   cmd->add_option("--size", o->size, "Tile width and height in pixels (1-4096)")
       ->capture_default_str();
   cmd->add_option("--light", o->light, "studio or uniform")->capture_default_str();
-  cmd->add_option("--illuminant", o->illuminant, "CIE illuminant: A, C, D50, D65, E, F2, F11")
-      ->capture_default_str();
-  cmd->add_option("--observer", o->observer, "CIE observer: 2 (1931) or 10 (1964)")
-      ->capture_default_str();
+  AddColorimetryOptions(cmd, &o->illuminant, &o->observer);
   cmd->add_option("--roughness", o->roughness,
                   "Surface roughness as GGX alpha, 0 (mirror polish) to 1")
       ->capture_default_str();

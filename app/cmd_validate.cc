@@ -225,10 +225,7 @@ void RegisterValidate(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--angles", o->angles, "Angles of incidence for colour, degrees")
       ->capture_default_str();
-  cmd->add_option("--illuminant", o->illuminant, "CIE illuminant: A, C, D50, D65, E, F2, F11")
-      ->capture_default_str();
-  cmd->add_option("--observer", o->observer, "CIE observer: 2 (1931) or 10 (1964)")
-      ->capture_default_str();
+  AddColorimetryOptions(cmd, &o->illuminant, &o->observer);
   cmd->add_option("--out", o->out, "Report folder (created if missing)")->required();
   cmd->add_flag("--quiet", o->quiet, "No progress or warnings on stderr");
   cmd->callback([o]() { Run(*o); });

@@ -160,6 +160,21 @@ std::unique_ptr<AlloyModel> ModelSource::Load(bool quiet) const {
   throw Error("give --model FILE or --data DIR");
 }
 
+void AddColorimetryOptions(CLI::App* cmd, std::string* illuminant, int* observer) {
+  cmd->add_option("--illuminant", *illuminant, "CIE illuminant: A, C, D50, D65, E, F2, F11")
+      ->capture_default_str();
+  cmd->add_option("--observer", *observer, "CIE observer: 2 (1931) or 10 (1964)")
+      ->capture_default_str();
+}
+
+void CheckOutputFolder(const std::string& path, const std::string& option) {
+  const fs::path folder = fs::path(path).parent_path();
+  std::error_code ec;
+  if (!folder.empty() && !fs::is_directory(folder, ec)) {
+    throw Error(option + ": folder '" + folder.string() + "' does not exist");
+  }
+}
+
 void CheckComposition(const AlloyModel& model, double x_atomic, bool extrapolate) {
   if (!(x_atomic >= 0.0 && x_atomic <= 1.0)) {
     throw Error("composition " + std::to_string(x_atomic) + " lies outside [0, 1]");

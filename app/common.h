@@ -54,6 +54,12 @@ struct ModelSource {
   std::unique_ptr<AlloyModel> Load(bool quiet) const;
 };
 
+// --illuminant and --observer, the same on every command that computes colour.
+void AddColorimetryOptions(CLI::App* cmd, std::string* illuminant, int* observer);
+
+// Refuses an output path whose folder does not exist, before any work is done.
+void CheckOutputFolder(const std::string& path, const std::string& option);
+
 // Checks x against the model's range unless extrapolation is allowed.
 void CheckComposition(const AlloyModel& model, double x_atomic, bool extrapolate);
 

@@ -163,7 +163,7 @@ TEST(DefaultGrid, VisibleForAuAgAndInfraredForNbSn) {
   EXPECT_EQ(visible.size(), 95u);
   const std::vector<double> infrared = DefaultGrid(LoadDataset(DataDir() + "/Nb-Sn"));
   EXPECT_GE(infrared.front(), 1000.0);
-  EXPECT_EQ(infrared.size(), 201u);
+  EXPECT_EQ(infrared.size(), 101u);
 }
 
 }  // namespace

@@ -208,7 +208,7 @@ std::vector<double> DefaultGrid(const Dataset& dataset) {
     const double last = std::floor(std::min(hi, 830.0) / 5.0 + 1e-9) * 5.0;
     return UniformGrid(first, last, 5.0);
   }
-  return UniformGrid(lo, hi, (hi - lo) / 200.0);
+  return UniformGrid(lo, hi, (hi - lo) / 100.0);
 }
 
 }  // namespace alloycolor

@@ -108,7 +108,7 @@ std::string ModelFileText(const AlloyModel& model);
 
 // Default wavelength grid for fitting a data set: the range all samples cover, cut to
 // 360-830 nm when that leaves at least 380-780 nm, on a 5 nm step; otherwise (infrared
-// data) the common range in 200 steps.
+// data) the common range in 100 steps.
 std::vector<double> DefaultGrid(const Dataset& dataset);
 
 }  // namespace alloycolor

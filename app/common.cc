@@ -134,7 +134,8 @@ void ModelSource::AddOptions(CLI::App* cmd, bool with_data) {
                     "(Au-Ag, Cu-Zn, Nb-Sn)");
     cmd->add_option("--method", method,
                     "Model built from --data: paper (the paper's baseline), eps-linear, "
-                    "smooth (Ceres fit)")
+                    "smooth (Ceres fit of tau, m* curves), physical (Ceres fit of Drude + "
+                    "interband terms)")
         ->capture_default_str();
   }
   cmd->add_flag("--extrapolate", extrapolate,

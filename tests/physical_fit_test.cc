@@ -2,6 +2,8 @@
 // analytic limits, the cost's Jacobian against finite differences, recovery of known
 // parameters within their reported uncertainty, the shipped Au-Ag and Nb-Sn sets, the JSON
 // round trip and damaged files, and the `params` command.
+#include "alloycolor/fit/physical_fit.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,7 +11,6 @@
 #include <random>
 
 #include "alloycolor/fit/physical_costs.h"
-#include "alloycolor/fit/physical_fit.h"
 #include "alloycolor/model/dataset.h"
 #include "alloycolor/model/error.h"
 #include "alloycolor/model/io.h"
@@ -34,12 +35,12 @@ std::complex<double> Std(const Complex<double>& z) { return {z.re, z.im}; }
 TEST(PhysicalModel, RiouxTermsReproduceThePublishedGoldModel) {
   const PhysicalLayout layout({TermKind::kRiouxGap, TermKind::kRiouxEdge}, 0);
   // eps_inf, wp, gamma; A, E0 (omega_0), Eg (omega_g), G; A, E0, G.
-  const double gold[10] = {2.2715, 8.9234, 0.042389, 73.251, 2.3957, 2.6652,
-                           0.17880, 40.007, 3.5362, 0.35467};
+  const double gold[10] = {2.2715, 8.9234,  0.042389, 73.251, 2.3957,
+                           2.6652, 0.17880, 40.007,   3.5362, 0.35467};
   const NkSpectrum au = ReadNkFile(DataDir() + "/Au-Ag/Rioux-Au100Ag0.yml");
   for (double lambda = 300; lambda <= 1000; lambda += 1) {
-    const Complex<double> nk = IndexFromPermittivity(
-        PhysicalPermittivity(layout, gold, OmegaEvFromLambdaNm(lambda)));
+    const Complex<double> nk =
+        IndexFromPermittivity(PhysicalPermittivity(layout, gold, OmegaEvFromLambdaNm(lambda)));
     const std::complex<double> data = NkAt(au, lambda);
     EXPECT_NEAR(nk.re, data.real(), 2e-5) << lambda;
     EXPECT_NEAR(nk.im, data.imag(), 2e-5) << lambda;
@@ -60,8 +61,7 @@ TEST(PhysicalModel, TermsMeetTheirAnalyticLimits) {
   EXPECT_GT(InterbandPermittivity(TermKind::kCriticalPoint, cp, 2.64).im, 0.0);
   // Rioux's edge: eps2 -> A pi / (2 w^2) well above the onset as G -> 0, 0 below it.
   const double edge[3] = {40.0, 2.0, 1e-6};
-  EXPECT_NEAR(InterbandPermittivity(TermKind::kRiouxEdge, edge, 3.0).im, 40.0 * kPi / 18.0,
-              1e-4);
+  EXPECT_NEAR(InterbandPermittivity(TermKind::kRiouxEdge, edge, 3.0).im, 40.0 * kPi / 18.0, 1e-4);
   EXPECT_NEAR(InterbandPermittivity(TermKind::kRiouxEdge, edge, 1.0).im, 0.0, 1e-4);
   // Drude term: eq. 7.
   const double drude[3] = {1.0, 9.0, 0.07};
@@ -72,9 +72,8 @@ TEST(PhysicalModel, TermsMeetTheirAnalyticLimits) {
 }
 
 TEST(PhysicalModel, ParametersStayPositiveAndOrderedForAnyCoefficients) {
-  const PhysicalLayout layout({TermKind::kCriticalPoint, TermKind::kCriticalPoint,
-                               TermKind::kRiouxGap},
-                              2);
+  const PhysicalLayout layout(
+      {TermKind::kCriticalPoint, TermKind::kCriticalPoint, TermKind::kRiouxGap}, 2);
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> uniform(-5.0, 5.0);
   const int np = layout.num_parameters();
@@ -100,9 +99,8 @@ TEST(PhysicalModel, ParametersStayPositiveAndOrderedForAnyCoefficients) {
 }
 
 TEST(PhysicalCosts, JacobianMatchesFiniteDifferences) {
-  const PhysicalLayout layout({TermKind::kRiouxGap, TermKind::kRiouxEdge,
-                               TermKind::kCriticalPoint, TermKind::kLorentz,
-                               TermKind::kCriticalPoint},
+  const PhysicalLayout layout({TermKind::kRiouxGap, TermKind::kRiouxEdge, TermKind::kCriticalPoint,
+                               TermKind::kLorentz, TermKind::kCriticalPoint},
                               2);
   std::vector<double> omega;
   std::vector<std::complex<double>> eps;
@@ -163,14 +161,18 @@ struct Truth {
       for (int k = 0; k < np; ++k) {
         const PhysicalParameter& p = layout.parameters()[k];
         switch (p.map) {
-          case ParameterMap::kPositive: raw[i][k] = SoftPositiveInverse(values[i][k]); break;
+          case ParameterMap::kPositive:
+            raw[i][k] = SoftPositiveInverse(values[i][k]);
+            break;
           case ParameterMap::kOnePlusPositive:
             raw[i][k] = SoftPositiveInverse(values[i][k] - 1);
             break;
           case ParameterMap::kAbove:
             raw[i][k] = SoftPositiveInverse(values[i][k] - values[i][p.reference]);
             break;
-          case ParameterMap::kFree: raw[i][k] = values[i][k]; break;
+          case ParameterMap::kFree:
+            raw[i][k] = values[i][k];
+            break;
         }
       }
     }
@@ -195,8 +197,7 @@ struct Truth {
   }
 };
 
-std::string WriteSyntheticDataset(const Truth& truth, const std::vector<double>& xs,
-                                  double noise) {
+std::string WriteSyntheticDataset(const Truth& truth, const std::vector<double>& xs, double noise) {
   const std::string dir = MakeTempDir();
   std::mt19937 rng(20261122);
   std::normal_distribution<double> normal(0.0, noise);
@@ -217,12 +218,13 @@ std::string WriteSyntheticDataset(const Truth& truth, const std::vector<double>&
     }
     const std::string file = "s" + std::to_string(i) + ".csv";
     WriteText(dir + "/" + file, NkCsvText(l, n, k));
-    samples += (i ? "," : "") + std::string("{\"x\": ") + std::to_string(xs[i]) +
-               ", \"file\": \"" + file + "\"}";
+    samples += (i ? "," : "") + std::string("{\"x\": ") + std::to_string(xs[i]) + ", \"file\": \"" +
+               file + "\"}";
   }
   WriteText(dir + "/dataset.json",
             "{\"system\": {\"a\": \"Au\", \"b\": \"Ag\"}, \"composition\": \"atomic_fraction_a\", "
-            "\"samples\": [" + samples + "]}");
+            "\"samples\": [" +
+                samples + "]}");
   return dir;
 }
 
@@ -311,8 +313,7 @@ TEST_F(AuAg, FileReadsBackWithIdenticalPredictionsAndBytes) {
     EXPECT_EQ(back->PermittivityDraws(x, grid, 4, 7u), model_->PermittivityDraws(x, grid, 4, 7u));
   }
   // The same inputs give the same bytes.
-  EXPECT_TRUE(ModelFileText(*fit::FitPhysical(*dataset_, fit::PhysicalFitOptions{}).model) ==
-              text);
+  EXPECT_TRUE(ModelFileText(*fit::FitPhysical(*dataset_, fit::PhysicalFitOptions{}).model) == text);
 }
 
 // Expects ModelFromJson to refuse the document with a message naming `field`.
@@ -363,8 +364,8 @@ TEST(PhysicalFit, NbSnInfraredDrudeGivesTauAndMassAgainstComposition) {
     const auto& wp = values[model.layout().Find(0, "wp_eV")];
     const auto& gamma = values[model.layout().Find(0, "gamma_eV")];
     const double tau_fs = TauFsFromGammaEv(gamma.value);
-    const double mass = kPlasmaEv2M3 * FreeElectronDensityM3(s.x_atomic, data.system) /
-                        (wp.value * wp.value);
+    const double mass =
+        kPlasmaEv2M3 * FreeElectronDensityM3(s.x_atomic, data.system) / (wp.value * wp.value);
     EXPECT_TRUE(tau_fs > 0.1 && tau_fs < 100) << s.file << ": tau " << tau_fs << " fs";
     EXPECT_TRUE(mass > 0.05 && mass < 50) << s.file << ": m* " << mass;
     EXPECT_TRUE(std::isfinite(wp.sigma) && wp.sigma > 0) << s.file;
@@ -407,8 +408,8 @@ TEST_F(AuAg, ParamsCommandPrintsTheParametersAgainstComposition) {
   EXPECT_GT(out["rows"][1]["tau_fs"]["value"].get<double>(), 0.0);
   EXPECT_GT(out["rows"][1]["terms"][0]["E0_nm"]["value"].get<double>(), 300.0);
   // The infrared set through the command line: fit, then params.
-  const auto fitted = RunProgram({"fit", "--data", DataDir() + "/Nb-Sn", "--method",
-                                  "physical", "--out", dir + "/nbsn.json", "--quiet"});
+  const auto fitted = RunProgram({"fit", "--data", DataDir() + "/Nb-Sn", "--method", "physical",
+                                  "--out", dir + "/nbsn.json", "--quiet"});
   ASSERT_EQ(fitted.status, 0) << fitted.err;
   const auto nbsn = RunProgram({"params", "--model", dir + "/nbsn.json", "--steps", "5"});
   ASSERT_EQ(nbsn.status, 0) << nbsn.err;

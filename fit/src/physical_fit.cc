@@ -16,7 +16,7 @@
 namespace alloycolor::fit {
 namespace {
 
-constexpr int kEndStarts = 3;       // grid-search starts refined per end sample
+constexpr int kEndStarts = 3;        // grid-search starts refined per end sample
 constexpr int kRaceIterations = 30;  // joint starts race this far before the best goes on
 constexpr double kPi = 3.14159265358979323846;
 
@@ -72,8 +72,7 @@ FitData PrepareData(const Dataset& dataset, const PhysicalFitOptions& options) {
     if (!s.nk.Covers(data.grid_nm.front(), data.grid_nm.back())) {
       std::ostringstream msg;
       msg << s.file << ": covers " << s.nk.lambda_min_nm() << "-" << s.nk.lambda_max_nm()
-          << " nm, the fit needs " << data.grid_nm.front() << "-" << data.grid_nm.back()
-          << " nm";
+          << " nm, the fit needs " << data.grid_nm.front() << "-" << data.grid_nm.back() << " nm";
       throw Error(msg.str());
     }
     SampleData sd;
@@ -170,8 +169,8 @@ class FitProblem {
     for (const SampleData* s : samples) {
       double p[kPhysicalMaxDegree + 1];
       LegendreBasis(layout.basis_size() == 1 ? 0.0 : basis.U(s->x), layout.degree(), p);
-      problem_.AddResidualBlock(CreatePhysicalSampleCost(layout, p, s->omega_ev, s->eps),
-                                nullptr, block);
+      problem_.AddResidualBlock(CreatePhysicalSampleCost(layout, p, s->omega_ev, s->eps), nullptr,
+                                block);
       residuals_ += 2 * s->eps.size();
       block_sizes_.push_back(2 * s->eps.size());
     }
@@ -201,25 +200,43 @@ class FitProblem {
     return r;
   }
 
-  // The covariance of the coefficients, unscaled ((J^T J)^-1); empty if it fails.
-  // *pseudo_inverse says whether the rank-deficient fallback was needed.
+  // The covariance of the coefficients, unscaled ((J^T J)^-1, or its pseudo-inverse when
+  // J is rank-deficient); empty if it fails. *pseudo_inverse says whether J is
+  // rank-deficient: lambda_min / lambda_max of J^T J below the Ceres default
+  // min_reciprocal_condition_number (1e-14). Asked for the pseudo-inverse directly
+  // (null_space_rank = -1), Ceres drops exactly those eigenvalues, and for a well-
+  // conditioned J that is the plain inverse; this way it never logs a failed attempt.
   std::vector<double> Covariance(bool* pseudo_inverse) {
     const int nc = static_cast<int>(coeffs_.size());
+    ceres::CRSMatrix crs;
+    problem_.Evaluate(ceres::Problem::EvaluateOptions(), nullptr, nullptr, nullptr, &crs);
+    Eigen::MatrixXd jtj = Eigen::MatrixXd::Zero(nc, nc);
+    for (int row = 0; row < crs.num_rows; ++row) {
+      for (int a = crs.rows[row]; a < crs.rows[row + 1]; ++a) {
+        for (int b = crs.rows[row]; b < crs.rows[row + 1]; ++b) {
+          jtj(crs.cols[a], crs.cols[b]) += crs.values[a] * crs.values[b];
+        }
+      }
+    }
+    const Eigen::VectorXd eigenvalues =
+        Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(jtj, Eigen::EigenvaluesOnly).eigenvalues();
+    const double min_reciprocal_condition = 1e-14;
+    *pseudo_inverse =
+        !(eigenvalues.minCoeff() >= min_reciprocal_condition * eigenvalues.maxCoeff());
+    ceres::Covariance::Options options;
+    options.algorithm_type = ceres::DENSE_SVD;
+    options.min_reciprocal_condition_number = min_reciprocal_condition;
+    options.null_space_rank = -1;
+    options.num_threads = 1;
+    ceres::Covariance covariance(options);
     const std::vector<std::pair<const double*, const double*>> blocks = {
         {coeffs_.data(), coeffs_.data()}};
-    for (int attempt = 0; attempt < 2; ++attempt) {
-      ceres::Covariance::Options options;
-      options.algorithm_type = ceres::DENSE_SVD;
-      options.null_space_rank = attempt == 0 ? 0 : -1;
-      options.num_threads = 1;
-      ceres::Covariance covariance(options);
-      if (!covariance.Compute(blocks, &problem_)) continue;
-      std::vector<double> out(static_cast<size_t>(nc) * nc);
-      if (!covariance.GetCovarianceBlock(coeffs_.data(), coeffs_.data(), out.data())) continue;
-      *pseudo_inverse = attempt == 1;
-      return out;
+    std::vector<double> out(static_cast<size_t>(nc) * nc);
+    if (!covariance.Compute(blocks, &problem_) ||
+        !covariance.GetCovarianceBlock(coeffs_.data(), coeffs_.data(), out.data())) {
+      return {};
     }
-    return {};
+    return out;
   }
 
   size_t residuals() const { return residuals_; }
@@ -293,10 +310,15 @@ class GridSearch {
       std::vector<Candidate>& list = candidates_[kind];
       for (int e = 0; e < kCentres; ++e) {
         for (double g : {0.05, 0.15, 0.5, 1.5}) {
-          const std::vector<double> gaps =
-              kind == TermKind::kRiouxGap ? std::vector<double>{0.1, 0.3, 1.0} : std::vector<double>{0.0};
+          const std::vector<double> gaps = kind == TermKind::kRiouxGap
+                                               ? std::vector<double>{0.1, 0.3, 1.0}
+                                               : std::vector<double>{0.0};
           for (double gap : gaps) {
-            Candidate c{e, centres_[e], g, gap, static_cast<int>(columns_.size()),
+            Candidate c{e,
+                        centres_[e],
+                        g,
+                        gap,
+                        static_cast<int>(columns_.size()),
                         kind == TermKind::kCriticalPoint ? 2 : 1};
             // The term with A = 1 (phase 0, then pi/2 for a critical point).
             double v[4] = {1.0, c.e0, 0.0, 0.0};
@@ -412,7 +434,8 @@ class GridSearch {
   }
 
   void Score(int gamma, const std::vector<int>& pick, std::vector<Scored>* out) const {
-    using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxColumns, kMaxColumns>;
+    using Small =
+        Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxColumns, kMaxColumns>;
     using SmallVec = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxColumns, 1>;
     int cols[kMaxColumns];
     int n = 0;
@@ -487,14 +510,18 @@ class GridSearch {
     for (int k = 0; k < np; ++k) {
       const PhysicalParameter& p = layout_.parameters()[k];
       switch (p.map) {
-        case ParameterMap::kPositive: r[k] = SoftPositiveInverse(std::max(v[k], 1e-3)); break;
+        case ParameterMap::kPositive:
+          r[k] = SoftPositiveInverse(std::max(v[k], 1e-3));
+          break;
         case ParameterMap::kOnePlusPositive:
           r[k] = SoftPositiveInverse(std::max(v[k] - 1.0, 1e-3));
           break;
         case ParameterMap::kAbove:
           r[k] = SoftPositiveInverse(std::max(v[k] - v[p.reference], 1e-3));
           break;
-        case ParameterMap::kFree: r[k] = v[k]; break;
+        case ParameterMap::kFree:
+          r[k] = v[k];
+          break;
       }
     }
     return r;
@@ -515,9 +542,9 @@ class GridSearch {
 // Fits one sample alone from the grid search's starts (and extra_start, if given);
 // returns the distinct solutions, best first. Throws Error naming the sample if none.
 std::vector<SolveResult> FitSingle(const PhysicalLayout& layout, const SampleData& s,
-                                const FitData& data,
-                                const std::vector<std::pair<double, double>>& windows = {},
-                                const std::vector<double>* extra_start = nullptr) {
+                                   const FitData& data,
+                                   const std::vector<std::pair<double, double>>& windows = {},
+                                   const std::vector<double>* extra_start = nullptr) {
   const Bounds bounds = MakeBounds(layout, data.omega_max);
   std::vector<SolveResult> results;
   GridSearch grid(layout, s, data);
@@ -558,7 +585,8 @@ SampleFit SampleMisfit(const PhysicalModel& model, const SampleData& s) {
   for (size_t i = 0; i < eps.size(); ++i) {
     sum += std::norm(eps[i] - s.eps[i]) / std::norm(s.eps[i]);
     const Complex<double> a = IndexFromPermittivity(Complex<double>{eps[i].real(), eps[i].imag()});
-    const Complex<double> b = IndexFromPermittivity(Complex<double>{s.eps[i].real(), s.eps[i].imag()});
+    const Complex<double> b =
+        IndexFromPermittivity(Complex<double>{s.eps[i].real(), s.eps[i].imag()});
     f.max_dn = std::max(f.max_dn, std::abs(a.re - b.re));
     f.max_dk = std::max(f.max_dk, std::abs(a.im - b.im));
   }
@@ -609,8 +637,10 @@ PhysicalFitResult FitPhysical(const Dataset& dataset, const PhysicalFitOptions& 
   for (const std::string& candidate : candidates) {
     const std::vector<TermKind> k = ParseInterbandTerms(candidate);
     const PhysicalLayout end_layout(k, 0);
-    progress("fitting the end samples (x = " + std::to_string(lo_end.x) + ", " +
-             std::to_string(hi_end.x) + ") with terms " + InterbandTermsText(k));
+    std::ostringstream msg;
+    msg << "fitting the end samples (x = " << lo_end.x << ", " << hi_end.x << ") with terms "
+        << InterbandTermsText(k);
+    progress(msg.str());
     auto lo = FitSingle(end_layout, lo_end, data);
     auto hi = FitSingle(end_layout, hi_end, data);
     const int p = end_layout.num_parameters();
@@ -635,9 +665,9 @@ PhysicalFitResult FitPhysical(const Dataset& dataset, const PhysicalFitOptions& 
 
   // Joint starts: the straight line between the ends' best fits, and quadratics through
   // the ends and the middle sample's best fits.
-  progress("joint fit: terms " + InterbandTermsText(kinds) + ", degree " +
-           std::to_string(degree) + ", " + std::to_string(n) + " samples x " +
-           std::to_string(data.grid_nm.size()) + " wavelengths");
+  progress("joint fit: terms " + InterbandTermsText(kinds) + ", degree " + std::to_string(degree) +
+           ", " + std::to_string(n) + " samples x " + std::to_string(data.grid_nm.size()) +
+           " wavelengths");
   const int np = layout.num_parameters();
   const std::vector<double>& r_lo = lo_fits.front().coeffs;
   const std::vector<double>& r_hi = hi_fits.front().coeffs;
@@ -742,16 +772,15 @@ PhysicalFitResult FitPhysical(const Dataset& dataset, const PhysicalFitOptions& 
 
   PhysicalFitResult result;
   result.terms = InterbandTermsText(kinds);
-  result.model = std::make_unique<PhysicalModel>(dataset, data.grid_nm.front(),
-                                                 data.grid_nm.back(), layout, best.coeffs,
-                                                 covariance);
+  result.model = std::make_unique<PhysicalModel>(dataset, data.grid_nm.front(), data.grid_nm.back(),
+                                                 layout, best.coeffs, covariance);
   nlohmann::json fit;
   fit["method"] = "ceres levenberg-marquardt, dense normal cholesky (eigen)";
   fit["terms"] = result.terms;
-  fit["terms_chosen_by"] =
-      terms_option == "auto" ? (data.infrared ? "auto: infrared data, drude only"
-                                              : "auto: lowest BIC of the end samples' fits")
-                             : "user";
+  fit["terms_chosen_by"] = terms_option == "auto"
+                               ? (data.infrared ? "auto: infrared data, drude only"
+                                                : "auto: lowest BIC of the end samples' fits")
+                               : "user";
   if (candidates.size() > 1) fit["terms_candidates"] = auto_scores;
   fit["degree"] = degree;
   fit["lambda_step_nm"] = data.grid_nm.size() > 1 ? data.grid_nm[1] - data.grid_nm[0] : 0.0;
@@ -793,10 +822,12 @@ PhysicalFitResult FitPhysical(const Dataset& dataset, const PhysicalFitOptions& 
   }
   result.model->set_fit_statistics(fit);
   if (pseudo_inverse) {
-    warnings.push_back("the physical fit's Jacobian is rank-deficient; its covariance is a "
-                       "pseudo-inverse");
+    warnings.push_back(
+        "the physical fit's Jacobian is rank-deficient; its covariance is a "
+        "pseudo-inverse");
   }
-  if (!best.converged) warnings.push_back("the fit stopped before convergence: " + best.termination);
+  if (!best.converged)
+    warnings.push_back("the fit stopped before convergence: " + best.termination);
   result.model->AddWarnings(warnings);
   return result;
 }

@@ -58,7 +58,8 @@ std::vector<TermKind> ParseInterbandTerms(const std::string& text) {
     if (name.empty()) throw Error("terms '" + text + "': empty term kind");
     const TermKind kind = TermKindFromName(name);
     if (kind == TermKind::kDrude) {
-      throw Error("terms '" + text + "': the drude term is always there; list interband "
+      throw Error("terms '" + text +
+                  "': the drude term is always there; list interband "
                   "terms only (lorentz, cp, rioux-gap, rioux-edge)");
     }
     kinds.push_back(kind);
@@ -74,7 +75,8 @@ std::vector<TermKind> ParseInterbandTerms(const std::string& text) {
 std::string InterbandTermsText(const std::vector<TermKind>& kinds) {
   if (kinds.empty()) return "none";
   std::string text;
-  for (size_t i = 0; i < kinds.size(); ++i) text += (i ? "," : "") + std::string(TermKindName(kinds[i]));
+  for (size_t i = 0; i < kinds.size(); ++i)
+    text += (i ? "," : "") + std::string(TermKindName(kinds[i]));
   return text;
 }
 
@@ -121,9 +123,9 @@ int PhysicalLayout::Find(int term, const std::string& name) const {
   return -1;
 }
 
-PhysicalModel::PhysicalModel(const Dataset& dataset, double lambda_min_nm,
-                             double lambda_max_nm, PhysicalLayout layout,
-                             std::vector<double> coeffs, std::vector<double> covariance)
+PhysicalModel::PhysicalModel(const Dataset& dataset, double lambda_min_nm, double lambda_max_nm,
+                             PhysicalLayout layout, std::vector<double> coeffs,
+                             std::vector<double> covariance)
     : layout_(std::move(layout)), coeffs_(std::move(coeffs)), covariance_(std::move(covariance)) {
   SetCommon(dataset, lambda_min_nm, lambda_max_nm);
   Validate(dataset.manifest_path);
@@ -149,9 +151,12 @@ const nlohmann::json& FieldAt(const nlohmann::json& obj, const char* key,
 
 std::string MapText(const PhysicalLayout& layout, const PhysicalParameter& p) {
   switch (p.map) {
-    case ParameterMap::kPositive: return "pos(r)";
-    case ParameterMap::kOnePlusPositive: return "1 + pos(r)";
-    case ParameterMap::kFree: return "r";
+    case ParameterMap::kPositive:
+      return "pos(r)";
+    case ParameterMap::kOnePlusPositive:
+      return "1 + pos(r)";
+    case ParameterMap::kFree:
+      return "r";
     case ParameterMap::kAbove: {
       const PhysicalParameter& ref = layout.parameters()[p.reference];
       return std::string("terms[") + std::to_string(ref.term) + "]." + ref.name + " + pos(r)";
@@ -247,8 +252,7 @@ void PhysicalModel::Validate(const std::string& source) const {
     }
   }
   if (!covariance_.empty() && covariance_.size() != nc * nc) {
-    throw Error(where + "parameters.covariance: expected " + std::to_string(nc * nc) +
-                " values");
+    throw Error(where + "parameters.covariance: expected " + std::to_string(nc * nc) + " values");
   }
   for (double c : covariance_) {
     if (!std::isfinite(c)) throw Error(where + "parameters.covariance: not finite");
@@ -294,8 +298,7 @@ std::vector<std::complex<double>> PhysicalModel::Permittivity(
 }
 
 std::vector<std::vector<std::complex<double>>> PhysicalModel::PermittivityDraws(
-    double x_atomic, const std::vector<double>& lambda_nm, int count,
-    std::uint32_t seed) const {
+    double x_atomic, const std::vector<double>& lambda_nm, int count, std::uint32_t seed) const {
   if (covariance_.empty()) return {};
   const int nc = layout_.num_coefficients();
   Eigen::Map<const Eigen::MatrixXd> c(covariance_.data(), nc, nc);
@@ -356,10 +359,19 @@ nlohmann::json PhysicalModel::ParametersJson() const {
       "eps(w, x) = eps_inf - wp^2 / (w (w + i gamma)) + sum of interband terms "
       "(alloycolor/model/physical_model.h), w in eV";
   p["basis"] = "legendre(u), u = 2 (x - x_range[0]) / (x_range[1] - x_range[0]) - 1";
-  p["value"] = "each parameter = map(r), r(x) = sum_d coefficients[d] P_d(u); "
-               "pos(r) = (r + sqrt(r^2 + s^2)) / 2";
+  p["value"] =
+      "each parameter = map(r), r(x) = sum_d coefficients[d] P_d(u); "
+      "pos(r) = (r + sqrt(r^2 + s^2)) / 2";
   p["positive_part_scale"] = kPhysicalPositiveScale;
   p["degree"] = layout_.degree();
+  // Every parameter's value and one-sigma at the training compositions, for readers.
+  std::vector<std::vector<PhysicalParameterValue>> at_training;
+  std::vector<double> training_x;
+  for (const TrainingSample& s : training_samples()) {
+    training_x.push_back(s.x_atomic);
+    at_training.push_back(ParameterValues(s.x_atomic));
+  }
+  p["training_x"] = training_x;
   nlohmann::json terms = nlohmann::json::array();
   for (int t = 0; t < layout_.num_terms(); ++t) {
     nlohmann::json list = nlohmann::json::array();
@@ -367,8 +379,8 @@ nlohmann::json PhysicalModel::ParametersJson() const {
       const PhysicalParameter& spec = layout_.parameters()[k];
       if (spec.term != t) continue;
       std::vector<double> c(coeffs_.begin() + k * nb, coeffs_.begin() + (k + 1) * nb);
-      nlohmann::json entry = {{"name", spec.name}, {"map", MapText(layout_, spec)},
-                              {"coefficients", c}};
+      nlohmann::json entry = {
+          {"name", spec.name}, {"map", MapText(layout_, spec)}, {"coefficients", c}};
       if (!covariance_.empty()) {
         std::vector<double> sigma(nb);
         for (int d = 0; d < nb; ++d) {
@@ -377,6 +389,13 @@ nlohmann::json PhysicalModel::ParametersJson() const {
         }
         entry["coefficient_sigma"] = sigma;
       }
+      std::vector<double> value, value_sigma;
+      for (const auto& row : at_training) {
+        value.push_back(row[k].value);
+        value_sigma.push_back(row[k].sigma);
+      }
+      entry["value_at_training_x"] = value;
+      if (!covariance_.empty()) entry["sigma_at_training_x"] = value_sigma;
       list.push_back(entry);
     }
     terms.push_back({{"kind", TermKindName(layout_.term_kind(t))}, {"parameters", list}});

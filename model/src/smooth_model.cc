@@ -8,6 +8,12 @@
 #include "alloycolor/model/units.h"
 
 namespace alloycolor {
+namespace {
+
+// Largest sum of |coefficients| of ln gamma or ln wp^2 at a node (see Validate).
+constexpr double kMaxLogSum = 100.0;
+
+}  // namespace
 
 SmoothModel::SmoothModel(const Dataset& dataset, std::vector<double> grid_nm, int degree,
                          std::vector<std::vector<double>> coeffs,
@@ -67,6 +73,18 @@ void SmoothModel::Validate(const std::string& source) const {
         throw Error(where + "coefficients[" + std::to_string(j) + "]: value out of range");
       }
     }
+    // Inside the training range |P_d(u)| <= 1, so |ln gamma| and |ln wp^2| are at most
+    // the sums of |coefficients|; bounding those keeps gamma, wp^2, their products and eps
+    // finite (e^100 ~ 3e43).
+    for (size_t part = 0; part < 2; ++part) {
+      double sum = 0;
+      for (size_t d = 0; d < nc / 2; ++d) sum += std::abs(coeffs_[j][part * nc / 2 + d]);
+      if (sum > kMaxLogSum) {
+        throw Error(where + "coefficients[" + std::to_string(j) + "]: value out of range (" +
+                    (part == 0 ? "ln gamma" : "ln wp2") + " could exceed " +
+                    std::to_string(static_cast<int>(kMaxLogSum)) + ")");
+      }
+    }
   }
   if (!covariance_.empty()) {
     if (covariance_.size() != grid_nm_.size()) {
@@ -123,6 +141,11 @@ std::vector<std::complex<double>> SmoothModel::Evaluate(
     }
     const Complex<double> e =
         SmoothNodePermittivity(ci, basis, nb, OmegaEvFromLambdaNm(lambda_nm[i]));
+    if (!std::isfinite(e.re) || !std::isfinite(e.im)) {  // only far outside the x range
+      throw Error("smooth model: eps is not finite at x = " + std::to_string(x_atomic) +
+                  ", " + std::to_string(lambda_nm[i]) + " nm (extrapolated too far from " +
+                  std::to_string(x_min()) + "-" + std::to_string(x_max()) + ")");
+    }
     eps[i] = {e.re, e.im};
   }
   return eps;

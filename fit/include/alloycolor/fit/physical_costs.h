@@ -28,7 +28,9 @@ class PhysicalSampleCost : public ceres::CostFunction {
  public:
   PhysicalSampleCost(const PhysicalLayout& layout, const double* basis,
                      std::vector<double> omega_ev, const std::vector<std::complex<double>>& eps)
-      : layout_(layout), basis_(basis, basis + layout.basis_size()), omega_ev_(std::move(omega_ev)) {
+      : layout_(layout),
+        basis_(basis, basis + layout.basis_size()),
+        omega_ev_(std::move(omega_ev)) {
     for (const auto& e : eps) {
       eps1_.push_back(e.real());
       eps2_.push_back(e.imag());
@@ -114,9 +116,10 @@ class PhysicalSampleCost : public ceres::CostFunction {
 
 // The cost of one sample at basis P_d(u) (layout.basis_size() values): its eps at the
 // photon energies omega_ev. Chooses the smallest Jet that holds the layout's parameters.
-inline ceres::CostFunction* CreatePhysicalSampleCost(
-    const PhysicalLayout& layout, const double* basis, std::vector<double> omega_ev,
-    const std::vector<std::complex<double>>& eps) {
+inline ceres::CostFunction* CreatePhysicalSampleCost(const PhysicalLayout& layout,
+                                                     const double* basis,
+                                                     std::vector<double> omega_ev,
+                                                     const std::vector<std::complex<double>>& eps) {
   const int np = layout.num_parameters();
   if (np <= 4) return new PhysicalSampleCost<4>(layout, basis, std::move(omega_ev), eps);
   if (np <= 8) return new PhysicalSampleCost<8>(layout, basis, std::move(omega_ev), eps);

@@ -18,8 +18,10 @@
 // near the span of the ends' centres, so the terms keep their roles). Every start runs
 // kRaceIterations; the lowest cost goes on to convergence. Bounds: the phases' coefficients
 // in [-pi, pi], the constant coefficients of positive parameters in [0, an upper limit]
-// (energies up to 3 times the range's highest photon energy), which keeps the solver out
-// of flat regions where pos(r) is 0.
+// (energies up to 3 times the range's highest photon energy). They keep the solver out of
+// flat regions where pos(r) is 0 and act as a mild prior: on measured data whose
+// decomposition into terms is poorly determined (Cu-Zn) the bounded fit has a higher
+// training cost than an unbounded one but predicts held-out samples better.
 //
 // Covariance: ceres::Covariance (dense SVD) of all coefficients, scaled by the residual
 // variance sum r^2 / (residuals - coefficients) times (1 + rho) / (1 - rho), rho the
@@ -59,7 +61,8 @@ struct PhysicalFitOptions {
 };
 
 // The candidates "auto" tries on visible data.
-inline const char* const kAutoTerms[] = {"rioux-gap,rioux-edge", "cp,cp", "lorentz,lorentz,lorentz"};
+inline const char* const kAutoTerms[] = {"rioux-gap,rioux-edge", "cp,cp",
+                                         "lorentz,lorentz,lorentz"};
 
 struct PhysicalFitResult {
   std::unique_ptr<PhysicalModel> model;

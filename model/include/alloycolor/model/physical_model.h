@@ -77,7 +77,7 @@ struct PhysicalParameter {
   TermKind kind;     // the term's kind
   const char* name;  // "eps_inf", "wp_eV", "gamma_eV", "A", "E0_eV", "Eg_eV", "G_eV", "phi_rad"
   ParameterMap map;
-  int reference;     // for kAbove: index of the parameter this one lies above; else -1
+  int reference;  // for kAbove: index of the parameter this one lies above; else -1
 };
 
 // The terms of a model and the order of its parameters: the Drude term's eps_inf, wp_eV,
@@ -99,7 +99,8 @@ class PhysicalLayout {
   // Index of the first parameter of a term, and the term's number of parameters.
   int term_offset(int term) const { return term_offset_[term]; }
   int term_size(int term) const {
-    return (term + 1 < num_terms() ? term_offset_[term + 1] : num_parameters()) - term_offset_[term];
+    return (term + 1 < num_terms() ? term_offset_[term + 1] : num_parameters()) -
+           term_offset_[term];
   }
   // Index of a term's parameter by name, or -1.
   int Find(int term, const std::string& name) const;
@@ -128,10 +129,18 @@ void PhysicalValuesFromRaw(const PhysicalLayout& layout, const T* raw, T* values
   const auto& params = layout.parameters();
   for (size_t k = 0; k < params.size(); ++k) {
     switch (params[k].map) {
-      case ParameterMap::kPositive: values[k] = SoftPositive(raw[k]); break;
-      case ParameterMap::kOnePlusPositive: values[k] = T(1.0) + SoftPositive(raw[k]); break;
-      case ParameterMap::kAbove: values[k] = values[params[k].reference] + SoftPositive(raw[k]); break;
-      case ParameterMap::kFree: values[k] = raw[k]; break;
+      case ParameterMap::kPositive:
+        values[k] = SoftPositive(raw[k]);
+        break;
+      case ParameterMap::kOnePlusPositive:
+        values[k] = T(1.0) + SoftPositive(raw[k]);
+        break;
+      case ParameterMap::kAbove:
+        values[k] = values[params[k].reference] + SoftPositive(raw[k]);
+        break;
+      case ParameterMap::kFree:
+        values[k] = raw[k];
+        break;
     }
   }
 }
@@ -139,8 +148,8 @@ void PhysicalValuesFromRaw(const PhysicalLayout& layout, const T* raw, T* values
 // The polynomials r at a composition from the coefficients (parameter-major: c[k nb + d])
 // and the basis P_d(u).
 template <typename T>
-void PhysicalRawFromCoefficients(const PhysicalLayout& layout, const T* coeffs,
-                                 const double* basis, T* raw) {
+void PhysicalRawFromCoefficients(const PhysicalLayout& layout, const T* coeffs, const double* basis,
+                                 T* raw) {
   const int nb = layout.basis_size();
   for (int k = 0; k < layout.num_parameters(); ++k) {
     T r(0.0);
@@ -269,8 +278,7 @@ class PhysicalModel : public AlloyModel {
   // coeffs: layout.num_coefficients() values, parameter-major; covariance (row-major,
   // may be empty) their covariance.
   PhysicalModel(const Dataset& dataset, double lambda_min_nm, double lambda_max_nm,
-                PhysicalLayout layout, std::vector<double> coeffs,
-                std::vector<double> covariance);
+                PhysicalLayout layout, std::vector<double> coeffs, std::vector<double> covariance);
   PhysicalModel(const nlohmann::json& doc, const std::string& source);
 
   std::string method() const override { return "physical"; }
@@ -296,8 +304,7 @@ class PhysicalModel : public AlloyModel {
  private:
   void Validate(const std::string& source) const;
   std::vector<double> Values(double x_atomic, const double* coeffs) const;
-  std::vector<std::complex<double>> Evaluate(double x_atomic,
-                                             const std::vector<double>& lambda_nm,
+  std::vector<std::complex<double>> Evaluate(double x_atomic, const std::vector<double>& lambda_nm,
                                              const double* coeffs) const;
 
   PhysicalLayout layout_;

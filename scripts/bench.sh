@@ -4,22 +4,31 @@
 # million compositions with its output. Builds build/ (Release) first. Prints the machine
 # and the figures, with ratios to the straightforward implementation ("naive").
 #   scripts/bench.sh [--quick]      (--quick: shorter runs, less stable figures)
+# BUILD_DIR=dir uses an existing Release build there instead of setting up build/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 min_time=1.0
 [[ ${1:-} == --quick ]] && min_time=0.2
-scripts/setup.sh >/dev/null
+if [[ -z ${BUILD_DIR:-} ]]; then
+  scripts/setup.sh >/dev/null
+  BUILD_DIR=build
+fi
 out=$(mktemp -d)
+part=0
 trap 'rm -rf "$out"' EXIT
 
 echo "== machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//')"
 
 echo "== colours per second (Au-Ag, D65, 2-degree observer, 5 nm grid; one core)"
-build/bench/colour_bench --benchmark_min_time="$min_time" --benchmark_format=csv \
-  >"$out/colour.csv" 2>/dev/null
+# One run per set of counters (the CSV reporter wants the same counters on every row).
+for filter in 'BM_(Naive|Library|SweepExact)/' 'BM_SweepTable/' 'BM_SweepTableBuild/'; do
+  part=$((part + 1))
+  "$BUILD_DIR"/bench/colour_bench --benchmark_min_time="$min_time" --benchmark_format=csv \
+    --benchmark_filter="$filter" >"$out/colour-$part.csv" 2>/dev/null
+done
 awk -F, '
   function model(m) { return m == 0 ? "paper" : m == 1 ? "eps-linear" : "smooth" }
-  NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
+  FNR == 1 { delete col; for (i = 1; i <= NF; ++i) { h = $i; gsub(/"/, "", h); col[h] = i }; next }
   {
     name = $1; gsub(/"/, "", name)
     split(name, part, "/")
@@ -33,7 +42,7 @@ awk -F, '
     key = model(m) (angle != 0 ? " at " angle " deg" : "")
     rate[kind, key] = $col["items_per_second"]
     if (!(key in seen)) { seen[key] = 1; keys[++n] = key }
-    if (kind == "SweepTable" && col["table_nodes"]) {
+    if (kind == "SweepTable" && ("table_nodes" in col)) {
       nodes[key] = $col["table_nodes"]; err[key] = $col["table_error"]
     }
   }
@@ -42,7 +51,7 @@ awk -F, '
     for (i = 1; i <= n; ++i) {
       k = keys[i]; base = rate["Naive", k]
       printf "%-20s", k
-      printf " %12.3g/s", base
+      if (base > 0) printf " %12.3g/s", base; else printf " %14s", "-"
       if (rate["Library", k] != "") printf " %12.3g/s", rate["Library", k]; else printf " %14s", "-"
       printf " %12.3g/s", rate["SweepExact", k]
       if (base > 0) printf " (%4.1fx)", rate["SweepExact", k] / base; else printf " %7s", ""
@@ -58,10 +67,10 @@ awk -F, '
     printf "; built in"
     for (m = 0; m < 3; ++m) printf " %s %.1f ms", model(m), build[m]
     printf ")\n"
-  }' "$out/colour.csv"
+  }' "$out"/colour-*.csv
 
 echo "== alloycolor sweep end to end: 1,000,000 compositions written to /dev/null (best of 3)"
-ac=build/app/alloycolor
+ac=$BUILD_DIR/app/alloycolor
 $ac fit --data Au-Ag --quiet --no-covariance --out "$out/smooth.json"
 sweep_time() {
   local best="" start end
@@ -87,19 +96,23 @@ done
 printf '%-11s csv %6.2f s   (--exact: every composition evaluated)\n' "smooth" \
   "$(sweep_time --model "$out/smooth.json" --steps 1000000 --exact)"
 
-echo "== smooth fit time against data size (median of 3)"
-build/bench/fit_bench --benchmark_format=csv 2>/dev/null | awk -F, '
-  NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
+echo "== smooth fit time against data size (degree 2, no covariance; median of 5; [Ceres iterations])"
+"$BUILD_DIR"/bench/fit_bench --benchmark_format=csv 2>/dev/null | awk -F, '
+  NR == 1 { for (i = 1; i <= NF; ++i) { h = $i; gsub(/"/, "", h); col[h] = i }; next }
   $1 ~ /_median"?$/ {
     name = $1; gsub(/"/, "", name); sub(/_median$/, "", name); sub(/^BM_/, "", name)
-    t = $col["real_time"] / 1000
+    t = $col["real_time"]; it = ("ceres_iterations" in col) ? $col["ceres_iterations"] : ""
     split(name, part, "/")
-    if (part[1] == "FitWavelengths") { sub(/x:/, "", part[2]); w[part[2]] = t }
-    else if (part[1] == "FitSamples") { sub(/samples:/, "", part[2]); s[part[2]] = t }
+    if (part[1] == "FitWavelengths") { sub(/x:/, "", part[2]); w[part[2]] = t; wi[part[2]] = it }
+    else if (part[1] == "FitSamples") { sub(/samples:/, "", part[2]); s[part[2]] = t; si[part[2]] = it }
     else d = t
   }
   END {
-    printf "wavelengths (11 samples, degree 2):  95 nodes %.2f s, 189 nodes %.2f s (%.1fx), 377 nodes %.2f s (%.1fx)\n", w[1], w[2], w[2] / w[1], w[4], w[4] / w[1]
-    printf "samples (95 nodes, degree 2):        3 samples %.2f s, 6 samples %.2f s (%.1fx), 11 samples %.2f s (%.1fx)\n", s[3], s[6], s[6] / s[3], s[11], s[11] / s[3]
-    printf "default fit (cross-validated degree, covariance; 11 samples, 95 nodes): %.2f s\n", d
+    printf "%-24s %18s %18s %18s\n", "", "1x", "2x", "4x (samples: 3.7x)"
+    printf "%-24s %8.1f ms [%3d] %8.1f ms [%3d] %8.1f ms [%3d]\n", "wavelengths 95/189/377", w[1], wi[1], w[2], wi[2], w[4], wi[4]
+    printf "%-24s %8.1f ms [%3d] %8.1f ms [%3d] %8.1f ms [%3d]\n", "samples 3/6/11", s[3], si[3], s[6], si[6], s[11], si[11]
+    printf "%-24s %12.2f ms %15.2f ms %15.2f ms   (%.1fx, %.1fx)\n", "wavelengths, per iter.", w[1] / wi[1], w[2] / wi[2], w[4] / wi[4], (w[2] / wi[2]) / (w[1] / wi[1]), (w[4] / wi[4]) / (w[1] / wi[1])
+    printf "%-24s %12.2f ms %15.2f ms %15.2f ms   (%.1fx, %.1fx)\n", "samples, per iter.", s[3] / si[3], s[6] / si[6], s[11] / si[11], (s[6] / si[6]) / (s[3] / si[3]), (s[11] / si[11]) / (s[3] / si[3])
+    printf "default fit (cross-validated degree, covariance; 11 samples, 95 nodes): %.0f ms\n", d
   }'
+

@@ -5,9 +5,9 @@
 #include <filesystem>
 #include <iostream>
 
-#include "alloycolor/model/error.h"
+#include "alloycolor/core/error.h"
 #include "alloycolor/render/image.h"
-#include "alloycolor/render/material_color.h"
+#include "alloycolor/color/material_color.h"
 #include "common.h"
 #include "report.h"
 
@@ -50,7 +50,7 @@ void Run(const ChartOptions& o) {
   if (!o.labels.empty() && o.labels != "atomic" && o.labels != "weight") {
     throw Error("--labels: '" + o.labels + "' is not atomic or weight");
   }
-  const render::Colorimeter colorimeter = LoadColorimeter(o.illuminant, o.observer);
+  const color::Colorimeter colorimeter = LoadColorimeter(o.illuminant, o.observer);
   const auto model = o.source.Load(o.quiet);
   const double from =
       o.from_text.empty() ? model->x_min() : CompositionArg(o.from_text, "--from", model->system());
@@ -70,7 +70,7 @@ void Run(const ChartOptions& o) {
   for (const ChartSwatch& s : chart.swatches) {
     char buf[80];
     std::snprintf(buf, sizeof buf, "%s%.6g %s", compositions.empty() ? "" : ", ", s.x_atomic,
-                  render::HexColor(s.srgb8).c_str());
+                  color::HexColor(s.srgb8).c_str());
     compositions += buf;
   }
   render::WritePng(o.out, ChartImage(chart, 64, 8),

@@ -4,9 +4,9 @@
 #include <iostream>
 #include <sstream>
 
-#include "alloycolor/model/error.h"
-#include "alloycolor/model/io.h"
-#include "alloycolor/render/material_color.h"
+#include "alloycolor/core/error.h"
+#include "alloycolor/core/io.h"
+#include "alloycolor/color/material_color.h"
 #include "common.h"
 
 namespace alloycolor::app {
@@ -30,19 +30,19 @@ void PrintHeader(const std::string& what, const ColorOptions& o) {
               "a*", "b*", "sRGB", "sRGB8", "paper RGB");
 }
 
-void PrintRow(const std::string& label, const render::ColorResult& c, double sigma) {
+void PrintRow(const std::string& label, const color::ColorResult& c, double sigma) {
   char rgb8[32];
   std::snprintf(rgb8, sizeof rgb8, "%d,%d,%d", c.srgb8[0], c.srgb8[1], c.srgb8[2]);
   std::printf("%-10s %8.4f %8.4f %8.4f %8.3f %8.3f %8.3f  %-8s %-15s %.3f,%.3f,%.3f",
               label.c_str(), c.xyz.X, c.xyz.Y, c.xyz.Z, c.lab.L, c.lab.a, c.lab.b,
-              render::HexColor(c.srgb8).c_str(), rgb8, c.paper_rgb.r, c.paper_rgb.g,
+              color::HexColor(c.srgb8).c_str(), rgb8, c.paper_rgb.r, c.paper_rgb.g,
               c.paper_rgb.b);
   if (sigma >= 0) std::printf("  (1-sigma dE00 %.3f)", sigma);
   std::printf("\n");
 }
 
 void Run(const ColorOptions& o) {
-  const render::Colorimeter colorimeter = LoadColorimeter(o.illuminant, o.observer);
+  const color::Colorimeter colorimeter = LoadColorimeter(o.illuminant, o.observer);
   if (!(o.angle_deg >= 0.0 && o.angle_deg <= 90.0)) {
     std::ostringstream msg;
     msg << "--angle: " << o.angle_deg << " lies outside 0-90 degrees";
@@ -62,13 +62,13 @@ void Run(const ColorOptions& o) {
     if (!o.quiet) {
       for (const auto& w : warnings) Warn(w);
     }
-    const render::ColorResult c = render::ColorFromXYZ(
+    const color::ColorResult c = color::ColorFromXYZ(
         colorimeter,
-        render::MaterialXYZ(colorimeter, render::IndexOnGrid(colorimeter, nk), o.angle_deg));
+        color::MaterialXYZ(colorimeter, color::IndexOnGrid(colorimeter, nk), o.angle_deg));
     if (o.json) {
       nlohmann::json out = common;
       out["source"] = o.nk_file;
-      out.update(render::ColorJson(c));
+      out.update(color::ColorJson(c));
       std::cout << out.dump(2) << "\n";
     } else {
       PrintHeader(o.nk_file, o);
@@ -85,15 +85,15 @@ void Run(const ColorOptions& o) {
   }
   for (double x : xs) {
     CheckComposition(*model, x, o.source.extrapolate);
-    const render::ColorResult c = render::ColorFromXYZ(
-        colorimeter, render::MaterialXYZ(colorimeter,
-                                         render::IndexOnGrid(colorimeter, *model, x),
+    const color::ColorResult c = color::ColorFromXYZ(
+        colorimeter, color::MaterialXYZ(colorimeter,
+                                         color::IndexOnGrid(colorimeter, *model, x),
                                          o.angle_deg));
-    const double sigma = render::DeltaE00Sigma(colorimeter, *model, x, o.angle_deg);
+    const double sigma = color::DeltaE00Sigma(colorimeter, *model, x, o.angle_deg);
     if (o.json) {
       nlohmann::json r = {{"x", x},
                           {"x_weight", WeightFromAtomicFraction(x, model->system())}};
-      r.update(render::ColorJson(c));
+      r.update(color::ColorJson(c));
       if (sigma >= 0) r["delta_e00_sigma"] = sigma;
       results.push_back(r);
     } else {

@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
-#include "alloycolor/model/error.h"
-#include "alloycolor/model/io.h"
-#include "alloycolor/render/spectral_export.h"
+#include "alloycolor/core/error.h"
+#include "alloycolor/core/io.h"
+#include "alloycolor/export/spectral_export.h"
 #include "common.h"
 
 namespace alloycolor::app {
@@ -45,7 +45,7 @@ void Run(const ExportOptions& o) {
   }
   if (o.out.empty()) throw Error("--out: give a file name prefix");
   CheckOutputFolder(o.out, "--out");
-  render::ConductorSpectra spectra;
+  exports::ConductorSpectra spectra;
   std::string id;
   if (!o.nk_file.empty()) {
     if (!o.source.model_path.empty() || !o.source.data_dir.empty() || !o.x_text.empty()) {
@@ -56,7 +56,7 @@ void Run(const ExportOptions& o) {
     if (!o.quiet) {
       for (const auto& w : warnings) Warn(w);
     }
-    spectra = render::MeasuredSpectra(nk, "measured n, k from " + o.nk_file);
+    spectra = exports::MeasuredSpectra(nk, "measured n, k from " + o.nk_file);
     std::string stem = o.nk_file.substr(o.nk_file.find_last_of('/') + 1);
     id = Identifier(stem.substr(0, stem.find_last_of('.')));
   } else {
@@ -76,7 +76,7 @@ void Run(const ExportOptions& o) {
         system.a.symbol + "), " + model->method() + " model " +
         (o.source.model_path.empty() ? "built from data " + o.source.data_dir
                                      : "from " + o.source.model_path);
-    spectra = render::ModelSpectra(*model, x, material);
+    spectra = exports::ModelSpectra(*model, x, material);
     id = Identifier(system.Name() + "_x" + Format("%.6g", x));
   }
   const std::vector<std::string> header = {std::string("written by alloycolor ") +
@@ -84,10 +84,10 @@ void Run(const ExportOptions& o) {
   const std::string eta_file = o.out + ".eta.spd";
   const std::string k_file = o.out + ".k.spd";
   // Everything is formatted before the first file is written.
-  const std::string eta_text = render::SpdText(spectra, true, header);
-  const std::string k_text = render::SpdText(spectra, false, header);
-  const std::string pbrt_text = render::PbrtMaterialText(spectra, eta_file, k_file, header);
-  const std::string xml_text = render::MitsubaBsdfXml(spectra, id, eta_file, k_file, header);
+  const std::string eta_text = exports::SpdText(spectra, true, header);
+  const std::string k_text = exports::SpdText(spectra, false, header);
+  const std::string pbrt_text = exports::PbrtMaterialText(spectra, eta_file, k_file, header);
+  const std::string xml_text = exports::MitsubaBsdfXml(spectra, id, eta_file, k_file, header);
   if (!o.quiet) {
     for (const std::string& note : spectra.notes) Warn(note);
   }

@@ -9,8 +9,8 @@
 
 #include "alloycolor/fit/physical_fit.h"
 #include "alloycolor/fit/smooth_fit.h"
-#include "alloycolor/model/error.h"
-#include "alloycolor/model/io.h"
+#include "alloycolor/core/error.h"
+#include "alloycolor/core/io.h"
 #include "alloycolor/model/sample_models.h"
 #include "alloycolor/model/smooth_model.h"
 #include "common.h"

@@ -5,12 +5,12 @@
 #include <iostream>
 #include <sstream>
 
-#include "alloycolor/model/composition.h"
-#include "alloycolor/model/error.h"
+#include "alloycolor/core/composition.h"
+#include "alloycolor/core/error.h"
 #include "alloycolor/model/optics.h"
 #include "alloycolor/model/physical_model.h"
 #include "alloycolor/model/smooth_model.h"
-#include "alloycolor/model/units.h"
+#include "alloycolor/core/units.h"
 #include "common.h"
 
 namespace alloycolor::app {

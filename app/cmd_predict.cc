@@ -4,10 +4,10 @@
 #include <iostream>
 #include <sstream>
 
-#include "alloycolor/model/error.h"
-#include "alloycolor/model/io.h"
+#include "alloycolor/core/error.h"
+#include "alloycolor/core/io.h"
 #include "alloycolor/model/optics.h"
-#include "alloycolor/model/spectrum.h"
+#include "alloycolor/core/spectrum.h"
 #include "common.h"
 
 namespace alloycolor::app {

@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "alloycolor/model/error.h"
-#include "alloycolor/model/io.h"
+#include "alloycolor/core/error.h"
+#include "alloycolor/core/io.h"
 #include "alloycolor/render/image.h"
-#include "alloycolor/render/material_color.h"
+#include "alloycolor/color/material_color.h"
 #include "alloycolor/render/renderer.h"
 #include "common.h"
 
@@ -96,7 +96,7 @@ render::RenderOptions CheckedOptions(const RenderCommandOptions& o) {
 }
 
 std::vector<Material> LoadMaterials(const RenderCommandOptions& o,
-                                    const render::Colorimeter& colorimeter,
+                                    const color::Colorimeter& colorimeter,
                                     std::string* description) {
   std::vector<Material> materials;
   if (!o.nk_file.empty()) {
@@ -108,7 +108,7 @@ std::vector<Material> LoadMaterials(const RenderCommandOptions& o,
     if (!o.quiet) {
       for (const auto& w : warnings) Warn(w);
     }
-    materials.push_back({o.nk_file, render::IndexOnGrid(colorimeter, nk)});
+    materials.push_back({o.nk_file, color::IndexOnGrid(colorimeter, nk)});
     *description = "measured n, k from " + o.nk_file;
     return materials;
   }
@@ -121,7 +121,7 @@ std::vector<Material> LoadMaterials(const RenderCommandOptions& o,
   for (double x : xs) {
     CheckComposition(*model, x, o.source.extrapolate);
     materials.push_back({model->system().Name() + " x=" + Format("%.4g", x),
-                         render::IndexOnGrid(colorimeter, *model, x)});
+                         color::IndexOnGrid(colorimeter, *model, x)});
   }
   *description = model->system().Name() + ", " + model->method() + " model" +
                  (o.source.model_path.empty() ? " from data " + o.source.data_dir
@@ -138,7 +138,7 @@ double Milliseconds(std::chrono::steady_clock::time_point start) {
 void Run(const RenderCommandOptions& o) {
   const render::RenderOptions options = CheckedOptions(o);
   CheckOutputFolder(o.out, "--out");
-  const render::Colorimeter colorimeter = LoadColorimeter(o.illuminant, o.observer);
+  const color::Colorimeter colorimeter = LoadColorimeter(o.illuminant, o.observer);
   std::string description;
   const std::vector<Material> materials = LoadMaterials(o, colorimeter, &description);
   const long long pixels = static_cast<long long>(materials.size()) * options.size * options.size;

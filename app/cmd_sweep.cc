@@ -12,9 +12,9 @@
 #include <string_view>
 #include <vector>
 
-#include "alloycolor/model/error.h"
-#include "alloycolor/render/colorimetry.h"
-#include "alloycolor/render/sweep.h"
+#include "alloycolor/core/error.h"
+#include "alloycolor/color/colorimetry.h"
+#include "alloycolor/color/sweep.h"
 #include "common.h"
 
 namespace alloycolor::app {
@@ -130,7 +130,7 @@ void Run(const SweepOptions& o) {
   if (!(o.angle_deg >= 0.0 && o.angle_deg <= 90.0)) {
     throw Error("--angle: " + Describe(o.angle_deg) + " lies outside 0-90 degrees");
   }
-  const render::Colorimeter colorimeter = LoadColorimeter(o.illuminant, o.observer);
+  const color::Colorimeter colorimeter = LoadColorimeter(o.illuminant, o.observer);
   if (o.from_text.find(',') != std::string::npos || o.to_text.find(',') != std::string::npos) {
     throw Error("--from/--to: give one composition each");
   }
@@ -144,16 +144,16 @@ void Run(const SweepOptions& o) {
 
   // The model is named by its file or data set (the library's message names the method).
   const std::string source = o.source.model_path.empty() ? o.source.data_dir : o.source.model_path;
-  std::unique_ptr<render::ColorSweep> made;
+  std::unique_ptr<color::ColorSweep> made;
   try {
-    made = std::make_unique<render::ColorSweep>(colorimeter, *model, o.angle_deg);
+    made = std::make_unique<color::ColorSweep>(colorimeter, *model, o.angle_deg);
   } catch (const Error& e) {
     throw Error(source + ": " + e.what());
   }
-  render::ColorSweep& sweep = *made;
+  color::ColorSweep& sweep = *made;
   const bool table = !o.exact && o.steps >= kTableMinSteps && from != to &&
-                     sweep.BuildTable(from, to, render::kSweepTableTolerance);
-  const render::XYZ white = colorimeter.White();
+                     sweep.BuildTable(from, to, color::kSweepTableTolerance);
+  const color::XYZ white = colorimeter.White();
   const bool json = o.format == "json";
 
   Output out(stdout);
@@ -168,7 +168,7 @@ void Run(const SweepOptions& o) {
     head["evaluation"] = table ? nlohmann::json{{"method", "table"},
                                                 {"nodes", sweep.table_nodes()},
                                                 {"max_error_xyz", sweep.table_error()},
-                                                {"tolerance_xyz", render::kSweepTableTolerance}}
+                                                {"tolerance_xyz", color::kSweepTableTolerance}}
                                : nlohmann::json{{"method", "exact"}};
     std::string text = head.dump();
     text.pop_back();  // the closing brace; the results follow
@@ -181,13 +181,13 @@ void Run(const SweepOptions& o) {
   const double last = static_cast<double>(o.steps - 1);
   for (long long i = 0; i < o.steps; ++i) {
     const double x = i == 0 ? from : i == o.steps - 1 ? to : from + span * (i / last);
-    const render::XYZ xyz = table ? sweep.XYZAt(x) : sweep.ExactXYZ(x);
+    const color::XYZ xyz = table ? sweep.XYZAt(x) : sweep.ExactXYZ(x);
     if (!std::isfinite(xyz.X) || !std::isfinite(xyz.Y) || !std::isfinite(xyz.Z)) {
       throw Error("composition x = " + Describe(x) + ": the " + model->method() +
                   " model gives no finite colour");
     }
-    const render::Lab lab = render::LabFromXYZ(xyz, white);
-    const auto rgb = render::SRGB8FromLinear(render::LinearSRGBFromXYZ(xyz));
+    const color::Lab lab = color::LabFromXYZ(xyz, white);
+    const auto rgb = color::SRGB8FromLinear(color::LinearSRGBFromXYZ(xyz));
     if (json) {
       out.Text(i == 0 ? "{\"x\":" : ",\n{\"x\":");
       out.Fixed(x, 9, true);
@@ -223,7 +223,7 @@ void Run(const SweepOptions& o) {
     std::fprintf(stderr,
                  "alloycolor: sweep: XYZ interpolated from a table of %d compositions, "
                  "measured error %.2g (at most %.0e; --exact evaluates each)\n",
-                 sweep.table_nodes(), sweep.table_error(), render::kSweepTableTolerance);
+                 sweep.table_nodes(), sweep.table_error(), color::kSweepTableTolerance);
   }
 }
 

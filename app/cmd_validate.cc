@@ -8,8 +8,8 @@
 #include <iostream>
 #include <sstream>
 
-#include "alloycolor/model/error.h"
-#include "alloycolor/model/io.h"
+#include "alloycolor/core/error.h"
+#include "alloycolor/core/io.h"
 #include "common.h"
 #include "report.h"
 
@@ -176,7 +176,7 @@ void Run(const ValidateOptions& o) {
   }
   options.mode = o.holdout_text.empty() ? "loo" : "holdout";
   const std::vector<std::vector<double>> splits = Splits(o, dataset);
-  const render::Colorimeter colorimeter = LoadColorimeter(o.illuminant, o.observer);
+  const color::Colorimeter colorimeter = LoadColorimeter(o.illuminant, o.observer);
   PrepareOutput(o.out);
 
   const auto start = std::chrono::steady_clock::now();

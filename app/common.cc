@@ -10,8 +10,8 @@
 
 #include "alloycolor/fit/physical_fit.h"
 #include "alloycolor/fit/smooth_fit.h"
-#include "alloycolor/model/error.h"
-#include "alloycolor/model/io.h"
+#include "alloycolor/core/error.h"
+#include "alloycolor/core/io.h"
 #include "alloycolor/model/sample_models.h"
 
 namespace alloycolor::app {
@@ -40,8 +40,8 @@ Dataset LoadDatasetArg(const std::string& arg) {
   return LoadDataset(arg);
 }
 
-render::Colorimeter LoadColorimeter(const std::string& illuminant, int observer_deg) {
-  return render::Colorimeter::Load(DataRoot(), illuminant, observer_deg);
+color::Colorimeter LoadColorimeter(const std::string& illuminant, int observer_deg) {
+  return color::Colorimeter::Load(DataRoot(), illuminant, observer_deg);
 }
 
 namespace {

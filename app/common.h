@@ -10,8 +10,8 @@
 #include <CLI/CLI.hpp>
 
 #include "alloycolor/model/alloy_model.h"
-#include "alloycolor/model/dataset.h"
-#include "alloycolor/render/colorimetry.h"
+#include "alloycolor/core/dataset.h"
+#include "alloycolor/color/colorimetry.h"
 
 namespace alloycolor::app {
 
@@ -23,7 +23,7 @@ std::string DataRoot();
 Dataset LoadDatasetArg(const std::string& arg);
 
 // Colorimeter for --illuminant and --observer.
-render::Colorimeter LoadColorimeter(const std::string& illuminant, int observer_deg);
+color::Colorimeter LoadColorimeter(const std::string& illuminant, int observer_deg);
 
 // Comma-separated compositions ("0.5,75wt%,18k") as atomic fractions of element a.
 std::vector<double> ParseCompositions(const std::string& text, const AlloySystem& system);

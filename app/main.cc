@@ -5,7 +5,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "alloycolor/model/error.h"
+#include "alloycolor/core/error.h"
 #include "common.h"
 
 int main(int argc, char** argv) {

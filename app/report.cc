@@ -10,13 +10,13 @@
 #include <sstream>
 #include <utility>
 
-#include "alloycolor/model/composition.h"
-#include "alloycolor/model/error.h"
+#include "alloycolor/core/composition.h"
+#include "alloycolor/core/error.h"
 #include "alloycolor/model/optics.h"
 #include "alloycolor/model/sample_models.h"
-#include "alloycolor/model/spectrum.h"
-#include "alloycolor/model/units.h"
-#include "alloycolor/render/material_color.h"
+#include "alloycolor/core/spectrum.h"
+#include "alloycolor/core/units.h"
+#include "alloycolor/color/material_color.h"
 #include "common.h"
 
 namespace alloycolor::app {
@@ -75,30 +75,30 @@ std::vector<std::complex<double>> MeasuredIndex(const NkSpectrum& nk,
 
 // The predicted index on the colorimeter's grid held inside 380-780 nm: the spectrum
 // `alloycolor predict` writes by default, integrated as `alloycolor color --nk` would.
-std::vector<std::complex<double>> PredictedColourIndex(const render::Colorimeter& colorimeter,
+std::vector<std::complex<double>> PredictedColourIndex(const color::Colorimeter& colorimeter,
                                                        const AlloyModel& model, double x) {
   if (model.lambda_min_nm() > kVisibleLoNm + 1e-9 || model.lambda_max_nm() < kVisibleHiNm - 1e-9) {
     // Throws the standard message naming the model's range.
-    render::EvaluationGrid(colorimeter, model.lambda_min_nm(), model.lambda_max_nm(),
+    color::EvaluationGrid(colorimeter, model.lambda_min_nm(), model.lambda_max_nm(),
                            "the " + model.method() + " model");
   }
   const std::vector<double> grid =
-      render::EvaluationGrid(colorimeter, kVisibleLoNm, kVisibleHiNm, model.method());
+      color::EvaluationGrid(colorimeter, kVisibleLoNm, kVisibleHiNm, model.method());
   return model.Index(x, grid);
 }
 
 struct Colour {
-  std::vector<render::Lab> lab;
+  std::vector<color::Lab> lab;
   std::vector<std::array<std::uint8_t, 3>> srgb8;
 };
 
-Colour ColourAtAngles(const render::Colorimeter& colorimeter,
+Colour ColourAtAngles(const color::Colorimeter& colorimeter,
                       const std::vector<std::complex<double>>& index,
                       const std::vector<double>& angles_deg) {
   Colour c;
   for (double angle : angles_deg) {
-    const render::ColorResult r =
-        render::ColorFromXYZ(colorimeter, render::MaterialXYZ(colorimeter, index, angle));
+    const color::ColorResult r =
+        color::ColorFromXYZ(colorimeter, color::MaterialXYZ(colorimeter, index, angle));
     c.lab.push_back(r.lab);
     c.srgb8.push_back(r.srgb8);
   }
@@ -111,7 +111,7 @@ struct Spectra {
 
 Spectra SpectraOf(const std::vector<std::complex<double>>& index) {
   Spectra s;
-  s.reflectance = render::ReflectanceSpectrum(index, 0.0);
+  s.reflectance = color::ReflectanceSpectrum(index, 0.0);
   for (const auto& v : index) {
     s.n.push_back(v.real());
     s.k.push_back(v.imag());
@@ -222,7 +222,7 @@ SplitResult PrepareSplit(const Dataset& dataset, const std::vector<double>& hold
 // Predicts one held-out sample with one model; fills the measured side of `holdout` the
 // first time.
 MethodResult Evaluate(const AlloyModel& model, const Sample& sample,
-                      const render::Colorimeter& colorimeter, const ValidationOptions& options,
+                      const color::Colorimeter& colorimeter, const ValidationOptions& options,
                       HoldoutResult* holdout) {
   MethodResult r;
   std::string description;
@@ -260,9 +260,9 @@ MethodResult Evaluate(const AlloyModel& model, const Sample& sample,
     r.lab = c.lab;
     r.srgb8 = c.srgb8;
     for (size_t a = 0; a < options.angles_deg.size(); ++a) {
-      r.delta_e00.push_back(render::DeltaE00(holdout->lab[a], r.lab[a]));
+      r.delta_e00.push_back(color::DeltaE00(holdout->lab[a], r.lab[a]));
       if (model.HasUncertainty()) {
-        r.delta_e00_sigma.push_back(render::DeltaE00Sigma(
+        r.delta_e00_sigma.push_back(color::DeltaE00Sigma(
             colorimeter, model, sample.x_atomic, options.angles_deg[a], options.sigma_draws));
       }
     }
@@ -274,7 +274,7 @@ MethodResult Evaluate(const AlloyModel& model, const Sample& sample,
 
 ValidationReport ComputeValidation(const Dataset& dataset,
                                    const std::vector<std::vector<double>>& splits,
-                                   const render::Colorimeter& colorimeter,
+                                   const color::Colorimeter& colorimeter,
                                    const ValidationOptions& options,
                                    const ProgressFunction& progress) {
   ValidationReport report;
@@ -304,7 +304,7 @@ ValidationReport ComputeValidation(const Dataset& dataset,
       h.path = sample.path;
       h.split = static_cast<int>(s);
       try {
-        const Colour c = ColourAtAngles(colorimeter, render::IndexOnGrid(colorimeter, sample.nk),
+        const Colour c = ColourAtAngles(colorimeter, color::IndexOnGrid(colorimeter, sample.nk),
                                         options.angles_deg);
         h.lab = c.lab;
         h.srgb8 = c.srgb8;
@@ -511,12 +511,12 @@ nlohmann::json HexByAngle(const std::vector<double>& angles,
   if (srgb8.empty()) return nullptr;
   nlohmann::json out = nlohmann::json::object();
   for (size_t a = 0; a < angles.size() && a < srgb8.size(); ++a) {
-    out[Num(angles[a])] = render::HexColor(srgb8[a]);
+    out[Num(angles[a])] = color::HexColor(srgb8[a]);
   }
   return out;
 }
 
-nlohmann::json LabByAngle(const std::vector<double>& angles, const std::vector<render::Lab>& labs) {
+nlohmann::json LabByAngle(const std::vector<double>& angles, const std::vector<color::Lab>& labs) {
   if (labs.empty()) return nullptr;
   nlohmann::json out = nlohmann::json::object();
   for (size_t a = 0; a < angles.size() && a < labs.size(); ++a) {
@@ -819,7 +819,7 @@ std::string SvgPlot(const PlotSpec& spec) {
 }
 
 std::string Swatch(const std::array<std::uint8_t, 3>& srgb8, const std::string& caption) {
-  return "<div class=\"sw\"><div class=\"chip\" style=\"background:" + render::HexColor(srgb8) +
+  return "<div class=\"sw\"><div class=\"chip\" style=\"background:" + color::HexColor(srgb8) +
          "\"></div><div class=\"cap\">" + caption + "</div></div>";
 }
 
@@ -1030,12 +1030,12 @@ void WriteHoldout(const ValidationReport& report, const HoldoutResult& h, int in
     for (size_t a = 0; a < report.angles_deg.size(); ++a) {
       html << "<div class=\"swrow\"><div class=\"swlabel\">" << Num(report.angles_deg[a])
            << "&deg; incidence</div>"
-           << Swatch(h.srgb8[a], "<b>measured</b><br>" + render::HexColor(h.srgb8[a]));
+           << Swatch(h.srgb8[a], "<b>measured</b><br>" + color::HexColor(h.srgb8[a]));
       for (const std::string& m : report.methods) {
         const auto it = h.results.find(m);
         if (it == h.results.end() || a >= it->second.srgb8.size()) continue;
         const MethodResult& r = it->second;
-        std::string cap = "<b>" + Escape(m) + "</b><br>" + render::HexColor(r.srgb8[a]) +
+        std::string cap = "<b>" + Escape(m) + "</b><br>" + color::HexColor(r.srgb8[a]) +
                           "<br>&Delta;E " + Num(r.delta_e00[a], "%.2f");
         if (a < r.delta_e00_sigma.size()) {
           cap += " (&sigma; " + Num(r.delta_e00_sigma[a], "%.2f") + ")";
@@ -1215,7 +1215,7 @@ std::string ValidationHtml(const ValidationReport& report) {
 // ---------------------------------------------------------------------------------------
 // Composition chart.
 
-CompositionChart ComputeChart(const AlloyModel& model, const render::Colorimeter& colorimeter,
+CompositionChart ComputeChart(const AlloyModel& model, const color::Colorimeter& colorimeter,
                               double x_from, double x_to, int steps, double angle_deg,
                               bool weight_labels) {
   if (steps < 2) throw Error("--steps: need at least 2 swatches, got " + std::to_string(steps));
@@ -1238,10 +1238,10 @@ CompositionChart ComputeChart(const AlloyModel& model, const render::Colorimeter
                      : i == steps - 1 ? x_to
                      : weight_labels  ? AtomicFromWeightFraction(t, system)
                                       : t;
-    const render::ColorResult c = render::ColorFromXYZ(
+    const color::ColorResult c = color::ColorFromXYZ(
         colorimeter,
-        render::MaterialXYZ(colorimeter, render::IndexOnGrid(colorimeter, model, x), angle_deg));
-    const render::RGB& s = c.linear_srgb;
+        color::MaterialXYZ(colorimeter, color::IndexOnGrid(colorimeter, model, x), angle_deg));
+    const color::RGB& s = c.linear_srgb;
     chart.swatches.push_back({x, WeightFromAtomicFraction(x, model.system()), c.srgb8,
                               s.r < 0 || s.g < 0 || s.b < 0 || s.r > 1 || s.g > 1 || s.b > 1});
   }
@@ -1286,7 +1286,7 @@ std::string ChartSvg(const CompositionChart& chart) {
   for (int i = 0; i < n; ++i) {
     const ChartSwatch& s = chart.swatches[i];
     const int x = x0 + i * (l.swatch + l.gap);
-    const std::string hex = render::HexColor(s.srgb8);
+    const std::string hex = color::HexColor(s.srgb8);
     svg << "<rect class=\"swatch\" x=\"" << x << "\" y=\"" << y0 << "\" width=\"" << l.swatch
         << "\" height=\"" << l.swatch << "\" fill=\"" << hex << "\" stroke=\"#777\" "
         << "stroke-width=\"0.5\"><title>x = " << Num(s.x_atomic, "%.4g") << " ("

@@ -14,7 +14,7 @@
 //    380-780 nm, exactly as `alloycolor predict` writes it by default, so the numbers can be
 //    recomputed from its output. Not available when the data do not cover 380-780 nm.
 //  - delta_e00_sigma[angle]: the model's own one-sigma colour uncertainty
-//    (render::DeltaE00Sigma) where AlloyModel::HasUncertainty().
+//    (color::DeltaE00Sigma) where AlloyModel::HasUncertainty().
 //  - reflectance_rms, reflectance_max: normal-incidence reflectance error over 380-780 nm
 //    on a 5 nm grid (measured n, k interpolated linearly); for data that do not cover the
 //    visible (infrared sets), over the held-out sample's own wavelengths inside the model's
@@ -34,8 +34,8 @@
 #include <vector>
 
 #include "alloycolor/model/alloy_model.h"
-#include "alloycolor/model/dataset.h"
-#include "alloycolor/render/colorimetry.h"
+#include "alloycolor/core/dataset.h"
+#include "alloycolor/color/colorimetry.h"
 #include "alloycolor/render/image.h"
 
 namespace alloycolor::app {
@@ -59,7 +59,7 @@ struct MethodResult {
   std::vector<double> delta_e00;
   std::vector<double> delta_e00_sigma;  // empty without uncertainty
   std::vector<std::array<std::uint8_t, 3>> srgb8;
-  std::vector<render::Lab> lab;
+  std::vector<color::Lab> lab;
   // Spectral errors on lambda_nm (see above).
   double reflectance_rms = 0, reflectance_max = 0, n_max_abs = 0, k_max_abs = 0;
   std::vector<double> lambda_nm, n, k, reflectance;  // predicted, for plots
@@ -74,7 +74,7 @@ struct HoldoutResult {
   std::vector<double> lambda_nm, n, k, reflectance;
   std::string metric_range;                        // how lambda_nm was chosen, for the report
   std::vector<std::array<std::uint8_t, 3>> srgb8;  // per angle; empty without colour
-  std::vector<render::Lab> lab;
+  std::vector<color::Lab> lab;
   std::string colour_note;  // why there is no colour, when there is none
   std::map<std::string, MethodResult> results;
 };
@@ -120,7 +120,7 @@ struct ValidationReport {
 // before the other methods' long work. Progress goes to `progress` (may be empty).
 ValidationReport ComputeValidation(const Dataset& dataset,
                                    const std::vector<std::vector<double>>& splits,
-                                   const render::Colorimeter& colorimeter,
+                                   const color::Colorimeter& colorimeter,
                                    const ValidationOptions& options,
                                    const ProgressFunction& progress);
 
@@ -155,7 +155,7 @@ struct CompositionChart {
 // Colours of the model at `steps` compositions from x_from to x_to (atomic fractions),
 // evenly spaced in weight fraction when labelled in wt%, else in atomic fraction; throws
 // Error when the model does not cover 380-780 nm.
-CompositionChart ComputeChart(const AlloyModel& model, const render::Colorimeter& colorimeter,
+CompositionChart ComputeChart(const AlloyModel& model, const color::Colorimeter& colorimeter,
                               double x_from, double x_to, int steps, double angle_deg,
                               bool weight_labels);
 

@@ -6,11 +6,11 @@
 //    per-sample loop with std::complex: the model's eps on the grid (for smooth, its
 //    coefficients interpolated in wavelength and exponentiated per sample, as a first
 //    implementation would), N = sqrt(eps), R = |(N - 1) / (N + 1)|^2, weighted sums.
-//  - Library: what `alloycolor color` does per composition: render::IndexOnGrid,
-//    render::MaterialXYZ, render::ColorFromXYZ.
-//  - SweepExact: render::ColorSweep::ExactXYZ (smooth: coefficients on the grid once, no
+//  - Library: what `alloycolor color` does per composition: color::IndexOnGrid,
+//    color::MaterialXYZ, color::ColorFromXYZ.
+//  - SweepExact: color::ColorSweep::ExactXYZ (smooth: coefficients on the grid once, no
 //    allocation per composition).
-//  - SweepTable: render::ColorSweep with its table of XYZ against x (error <= 1e-7).
+//  - SweepTable: color::ColorSweep with its table of XYZ against x (error <= 1e-7).
 // scripts/bench.sh runs this and prints the ratios to Naive.
 #include <benchmark/benchmark.h>
 
@@ -22,13 +22,13 @@
 #include <vector>
 
 #include "alloycolor/fit/smooth_fit.h"
-#include "alloycolor/model/dataset.h"
+#include "alloycolor/core/dataset.h"
 #include "alloycolor/model/sample_models.h"
 #include "alloycolor/model/smooth_model.h"
-#include "alloycolor/model/units.h"
-#include "alloycolor/render/colorimetry.h"
-#include "alloycolor/render/material_color.h"
-#include "alloycolor/render/sweep.h"
+#include "alloycolor/core/units.h"
+#include "alloycolor/color/colorimetry.h"
+#include "alloycolor/color/material_color.h"
+#include "alloycolor/color/sweep.h"
 
 namespace alloycolor {
 namespace {
@@ -36,7 +36,7 @@ namespace {
 constexpr int kSweepSteps = 1001;  // compositions 0, 0.001, ..., 1, cycled
 
 struct Fixture {
-  render::Colorimeter colorimeter = render::Colorimeter::Load(ALLOYCOLOR_DATA_DIR, "D65", 2);
+  color::Colorimeter colorimeter = color::Colorimeter::Load(ALLOYCOLOR_DATA_DIR, "D65", 2);
   Dataset dataset = LoadDataset(std::string(ALLOYCOLOR_DATA_DIR) + "/Au-Ag");
   std::unique_ptr<AlloyModel> paper, eps_linear, smooth;
   Fixture() {
@@ -60,27 +60,27 @@ double SweepX(int64_t i) { return static_cast<double>(i % kSweepSteps) / (kSweep
 
 // CIELAB and 8-bit sRGB of XYZ: the same for every variant.
 struct Colour {
-  render::XYZ xyz;
-  render::Lab lab;
+  color::XYZ xyz;
+  color::Lab lab;
   std::array<std::uint8_t, 3> srgb8;
 };
-Colour Finish(const render::Colorimeter& colorimeter, const render::XYZ& xyz) {
-  return {xyz, render::LabFromXYZ(xyz, colorimeter.White()),
-          render::SRGB8FromLinear(render::LinearSRGBFromXYZ(xyz))};
+Colour Finish(const color::Colorimeter& colorimeter, const color::XYZ& xyz) {
+  return {xyz, color::LabFromXYZ(xyz, colorimeter.White()),
+          color::SRGB8FromLinear(color::LinearSRGBFromXYZ(xyz))};
 }
 
 // ---- the straightforward implementation ----
 
 // The colorimeter's grid held inside the model's range.
-std::vector<double> HeldGrid(const render::Colorimeter& colorimeter, const AlloyModel& model) {
+std::vector<double> HeldGrid(const color::Colorimeter& colorimeter, const AlloyModel& model) {
   std::vector<double> grid = colorimeter.lambda_nm();
   for (double& l : grid) l = std::clamp(l, model.lambda_min_nm(), model.lambda_max_nm());
   return grid;
 }
 
-render::XYZ NaiveXYZFromEps(const render::Colorimeter& colorimeter,
+color::XYZ NaiveXYZFromEps(const color::Colorimeter& colorimeter,
                             const std::vector<std::complex<double>>& eps) {
-  render::XYZ xyz{0, 0, 0};
+  color::XYZ xyz{0, 0, 0};
   for (size_t i = 0; i < eps.size(); ++i) {
     const std::complex<double> n = std::sqrt(eps[i]);
     const double r = std::norm((n - 1.0) / (n + 1.0));
@@ -138,16 +138,16 @@ void BM_Library(benchmark::State& state) {
   int64_t i = 0;
   for (auto _ : state) {
     const double x = SweepX(i++);
-    const render::XYZ xyz =
-        render::MaterialXYZ(f.colorimeter, render::IndexOnGrid(f.colorimeter, model, x), 0.0);
-    benchmark::DoNotOptimize(render::ColorFromXYZ(f.colorimeter, xyz));
+    const color::XYZ xyz =
+        color::MaterialXYZ(f.colorimeter, color::IndexOnGrid(f.colorimeter, model, x), 0.0);
+    benchmark::DoNotOptimize(color::ColorFromXYZ(f.colorimeter, xyz));
   }
   state.SetItemsProcessed(state.iterations());
 }
 
 void BM_SweepExact(benchmark::State& state) {
   const Fixture& f = Shared();
-  const render::ColorSweep sweep(f.colorimeter, f.Model(state.range(0)),
+  const color::ColorSweep sweep(f.colorimeter, f.Model(state.range(0)),
                                  static_cast<double>(state.range(1)));
   int64_t i = 0;
   for (auto _ : state) {
@@ -158,7 +158,7 @@ void BM_SweepExact(benchmark::State& state) {
 
 void BM_SweepTable(benchmark::State& state) {
   const Fixture& f = Shared();
-  render::ColorSweep sweep(f.colorimeter, f.Model(state.range(0)),
+  color::ColorSweep sweep(f.colorimeter, f.Model(state.range(0)),
                            static_cast<double>(state.range(1)));
   if (!sweep.BuildTable(0.0, 1.0)) {
     state.SkipWithError("no table within the tolerance");
@@ -176,7 +176,7 @@ void BM_SweepTable(benchmark::State& state) {
 // Building the table, once per sweep.
 void BM_SweepTableBuild(benchmark::State& state) {
   const Fixture& f = Shared();
-  render::ColorSweep sweep(f.colorimeter, f.Model(state.range(0)), 0.0);
+  color::ColorSweep sweep(f.colorimeter, f.Model(state.range(0)), 0.0);
   for (auto _ : state) benchmark::DoNotOptimize(sweep.BuildTable(0.0, 1.0));
 }
 

@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "alloycolor/fit/smooth_fit.h"
-#include "alloycolor/model/dataset.h"
-#include "alloycolor/model/spectrum.h"
+#include "alloycolor/core/dataset.h"
+#include "alloycolor/core/spectrum.h"
 
 namespace alloycolor {
 namespace {

@@ -9,14 +9,15 @@
 #include <thread>
 #include <vector>
 
-#include "alloycolor/model/io.h"
-#include "alloycolor/render/colorimetry.h"
+#include "alloycolor/core/io.h"
+#include "alloycolor/color/colorimetry.h"
 #include "alloycolor/render/image.h"
-#include "alloycolor/render/material_color.h"
+#include "alloycolor/color/material_color.h"
 #include "alloycolor/render/renderer.h"
 #include "alloycolor/render/shading.h"
 
 namespace alloycolor::render {
+using namespace alloycolor::color;  // NOLINT(build/namespaces): colour types throughout
 namespace {
 
 constexpr int kSize = 1024;

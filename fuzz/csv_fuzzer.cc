@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "alloycolor/model/io.h"
+#include "alloycolor/core/io.h"
 #include "fuzz_util.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -22,10 +22,10 @@
 #include <vector>
 
 #include "alloycolor/model/alloy_model.h"
-#include "alloycolor/model/error.h"
-#include "alloycolor/model/spectrum.h"
-#include "alloycolor/render/colorimetry.h"
-#include "alloycolor/render/material_color.h"
+#include "alloycolor/core/error.h"
+#include "alloycolor/core/spectrum.h"
+#include "alloycolor/color/colorimetry.h"
+#include "alloycolor/color/material_color.h"
 
 namespace alloycolor::fuzz {
 
@@ -88,17 +88,17 @@ inline void CheckMessage(const Error& error, const std::string& culprit) {
   }
 }
 
-inline const render::Colorimeter& D65() {
-  static const render::Colorimeter colorimeter =
-      render::Colorimeter::Load(ALLOYCOLOR_DATA_DIR, "D65", 2);
+inline const color::Colorimeter& D65() {
+  static const color::Colorimeter colorimeter =
+      color::Colorimeter::Load(ALLOYCOLOR_DATA_DIR, "D65", 2);
   return colorimeter;
 }
 
-inline void CheckXYZ(const render::XYZ& xyz, const std::string& what) {
+inline void CheckXYZ(const color::XYZ& xyz, const std::string& what) {
   Require(std::isfinite(xyz.X) && std::isfinite(xyz.Y) && std::isfinite(xyz.Z),
           what + ": non-finite colour");
   // Reflectance lies in [0, 1], so XYZ lies between black and the white (with rounding).
-  const render::XYZ white = D65().White();
+  const color::XYZ white = D65().White();
   Require(xyz.X >= -1e-9 && xyz.Y >= -1e-9 && xyz.Z >= -1e-9 && xyz.X <= white.X + 1e-9 &&
               xyz.Y <= white.Y + 1e-9 && xyz.Z <= white.Z + 1e-9,
           what + ": colour outside black..white");
@@ -123,14 +123,14 @@ inline void CheckSpectrum(const NkSpectrum& nk) {
   }
   std::vector<std::complex<double>> index;
   try {
-    index = render::IndexOnGrid(D65(), nk);
+    index = color::IndexOnGrid(D65(), nk);
   } catch (const Error& e) {
     CheckMessage(e, nk.source);
     return;
   }
   CheckIndex(index, nk.source);
   for (double angle : {0.0, 60.0, 89.9}) {
-    CheckXYZ(render::MaterialXYZ(D65(), index, angle), nk.source);
+    CheckXYZ(color::MaterialXYZ(D65(), index, angle), nk.source);
   }
 }
 
@@ -153,13 +153,13 @@ inline void CheckModel(const AlloyModel& model, const std::string& what) {
     }
     CheckIndex(index, what);
     try {
-      index = render::IndexOnGrid(D65(), model, x);
+      index = color::IndexOnGrid(D65(), model, x);
     } catch (const Error& e) {
       CheckMessage(e, "");
       return;
     }
     CheckIndex(index, what);
-    for (double angle : {0.0, 60.0}) CheckXYZ(render::MaterialXYZ(D65(), index, angle), what);
+    for (double angle : {0.0, 60.0}) CheckXYZ(color::MaterialXYZ(D65(), index, angle), what);
   }
 }
 

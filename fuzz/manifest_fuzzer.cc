@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <string>
 
-#include "alloycolor/model/dataset.h"
+#include "alloycolor/core/dataset.h"
 #include "alloycolor/model/sample_models.h"
 #include "fuzz_util.h"
 

@@ -14,7 +14,7 @@
 //    15:2004 by hand.
 //  - sRGB: IEC 61966-2-1 matrix, its rounded inverse and transfer-function
 //  breakpoints.
-#include "alloycolor/render/colorimetry.h"
+#include "alloycolor/color/colorimetry.h"
 
 #include <gtest/gtest.h>
 
@@ -26,10 +26,10 @@
 #include <string>
 #include <vector>
 
-#include "alloycolor/model/error.h"
+#include "alloycolor/core/error.h"
 #include "test_util.h"
 
-namespace alloycolor::render {
+namespace alloycolor::color {
 namespace {
 
 using alloycolor::testing::DataDir;
@@ -488,4 +488,4 @@ TEST(LabTest, LinearBranchAndBreakpoint) {
 }
 
 }  // namespace
-}  // namespace alloycolor::render
+}  // namespace alloycolor::color

@@ -1,13 +1,13 @@
 // Tests of elements and compositions (model/composition.h) against hand calculations
 // from the IUPAC atomic weights and CRC densities in the element table.
-#include "alloycolor/model/composition.h"
+#include "alloycolor/core/composition.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <string>
 
-#include "alloycolor/model/error.h"
+#include "alloycolor/core/error.h"
 
 namespace alloycolor {
 namespace {

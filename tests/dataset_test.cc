@@ -1,6 +1,6 @@
 // Tests of data-set manifests (model/dataset.h): the bundled data sets, composition
 // conversion, and every kind of bad manifest, whose error must name the culprit.
-#include "alloycolor/model/dataset.h"
+#include "alloycolor/core/dataset.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "alloycolor/model/error.h"
-#include "alloycolor/model/io.h"
+#include "alloycolor/core/error.h"
+#include "alloycolor/core/io.h"
 #include "test_util.h"
 
 namespace alloycolor {

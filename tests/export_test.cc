@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "alloycolor/model/alloy_model.h"
-#include "alloycolor/model/dataset.h"
-#include "alloycolor/model/io.h"
+#include "alloycolor/core/dataset.h"
+#include "alloycolor/core/io.h"
 #include "alloycolor/model/sample_models.h"
 #include "alloycolor/model/smooth_model.h"
 #include "test_util.h"

@@ -1,7 +1,7 @@
 // Tests of the optical-constant readers and writers (model/io.h) and of spectra
 // (model/spectrum.h): the bundled files, hand-checked rows, and every kind of bad input,
 // whose error must name the file and line.
-#include "alloycolor/model/io.h"
+#include "alloycolor/core/io.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "alloycolor/model/error.h"
-#include "alloycolor/model/spectrum.h"
+#include "alloycolor/core/error.h"
+#include "alloycolor/core/spectrum.h"
 #include "test_util.h"
 
 namespace alloycolor {

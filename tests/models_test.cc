@@ -8,12 +8,12 @@
 #include <fstream>
 
 #include "alloycolor/model/alloy_model.h"
-#include "alloycolor/model/composition.h"
-#include "alloycolor/model/dataset.h"
-#include "alloycolor/model/error.h"
-#include "alloycolor/model/io.h"
+#include "alloycolor/core/composition.h"
+#include "alloycolor/core/dataset.h"
+#include "alloycolor/core/error.h"
+#include "alloycolor/core/io.h"
 #include "alloycolor/model/sample_models.h"
-#include "alloycolor/model/units.h"
+#include "alloycolor/core/units.h"
 #include "test_util.h"
 
 namespace alloycolor {

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <complex>
 
-#include "alloycolor/model/units.h"
+#include "alloycolor/core/units.h"
 
 namespace alloycolor {
 namespace {

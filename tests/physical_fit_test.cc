@@ -11,11 +11,11 @@
 #include <random>
 
 #include "alloycolor/fit/physical_costs.h"
-#include "alloycolor/model/dataset.h"
-#include "alloycolor/model/error.h"
-#include "alloycolor/model/io.h"
+#include "alloycolor/core/dataset.h"
+#include "alloycolor/core/error.h"
+#include "alloycolor/core/io.h"
 #include "alloycolor/model/physical_model.h"
-#include "alloycolor/model/units.h"
+#include "alloycolor/core/units.h"
 #include "test_util.h"
 
 namespace alloycolor {
@@ -26,7 +26,6 @@ using testing::MakeTempDir;
 using testing::RunProgram;
 using testing::WriteText;
 
-constexpr double kPi = 3.14159265358979323846;
 
 std::complex<double> Std(const Complex<double>& z) { return {z.re, z.im}; }
 

@@ -15,18 +15,19 @@
 #include <string>
 #include <vector>
 
-#include "alloycolor/model/dataset.h"
-#include "alloycolor/model/error.h"
-#include "alloycolor/model/io.h"
+#include "alloycolor/core/dataset.h"
+#include "alloycolor/core/error.h"
+#include "alloycolor/core/io.h"
 #include "alloycolor/model/sample_models.h"
-#include "alloycolor/render/colorimetry.h"
+#include "alloycolor/color/colorimetry.h"
 #include "alloycolor/render/image.h"
-#include "alloycolor/render/material_color.h"
+#include "alloycolor/color/material_color.h"
 #include "alloycolor/render/renderer.h"
 #include "alloycolor/render/shading.h"
 #include "test_util.h"
 
 namespace alloycolor::render {
+using namespace alloycolor::color;  // NOLINT(build/namespaces): colour types throughout
 namespace {
 
 namespace fs = std::filesystem;

@@ -7,12 +7,12 @@
 
 #include "alloycolor/fit/smooth_costs.h"
 #include "alloycolor/fit/smooth_fit.h"
-#include "alloycolor/model/dataset.h"
-#include "alloycolor/model/error.h"
-#include "alloycolor/model/io.h"
+#include "alloycolor/core/dataset.h"
+#include "alloycolor/core/error.h"
+#include "alloycolor/core/io.h"
 #include "alloycolor/model/sample_models.h"
-#include "alloycolor/model/units.h"
-#include "alloycolor/render/material_color.h"
+#include "alloycolor/core/units.h"
+#include "alloycolor/color/material_color.h"
 #include "test_util.h"
 
 namespace alloycolor {
@@ -181,23 +181,23 @@ TEST(SmoothFit, AuAgPaperSplitColourErrorIsSmall) {
   ASSERT_EQ(train.samples.size(), 6u);
   const auto smooth = fit::FitSmooth(train, fit::SmoothFitOptions{}).model;
   const SampleModel paper(SampleModel::Kind::kPaper, train);
-  const render::Colorimeter cm = render::Colorimeter::Load(DataDir(), "D65", 2);
+  const color::Colorimeter cm = color::Colorimeter::Load(DataDir(), "D65", 2);
   double worst_smooth = 0, worst_paper = 0;
   for (const Sample& s : all.samples) {
     bool is_held = false;
     for (double x : held_out) is_held |= std::abs(s.x_atomic - x) < 1e-9;
     if (!is_held) continue;
-    const render::Lab truth =
-        render::LabFromXYZ(render::MaterialXYZ(cm, render::IndexOnGrid(cm, s.nk), 0.0), cm.White());
+    const color::Lab truth =
+        color::LabFromXYZ(color::MaterialXYZ(cm, color::IndexOnGrid(cm, s.nk), 0.0), cm.White());
     auto de = [&](const AlloyModel& m) {
-      return render::DeltaE00(
-          truth, render::LabFromXYZ(
-                     render::MaterialXYZ(cm, render::IndexOnGrid(cm, m, s.x_atomic), 0.0),
+      return color::DeltaE00(
+          truth, color::LabFromXYZ(
+                     color::MaterialXYZ(cm, color::IndexOnGrid(cm, m, s.x_atomic), 0.0),
                      cm.White()));
     };
     worst_smooth = std::max(worst_smooth, de(*smooth));
     worst_paper = std::max(worst_paper, de(paper));
-    const double sigma = render::DeltaE00Sigma(cm, *smooth, s.x_atomic, 0.0);
+    const double sigma = color::DeltaE00Sigma(cm, *smooth, s.x_atomic, 0.0);
     EXPECT_TRUE(std::isfinite(sigma) && sigma > 0) << sigma;
   }
   EXPECT_LE(worst_smooth, 0.2);

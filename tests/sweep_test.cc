@@ -1,7 +1,7 @@
 // Sweeps (render/sweep.h, `alloycolor sweep`): the fast exact path equals the chain of
 // material_color.h for every model and angle; the table's error, measured and at random
 // compositions, stays within its tolerance; the command's rows agree with `color`.
-#include "alloycolor/render/sweep.h"
+#include "alloycolor/color/sweep.h"
 
 #include <gtest/gtest.h>
 
@@ -15,11 +15,11 @@
 #include <vector>
 
 #include "alloycolor/fit/smooth_fit.h"
-#include "alloycolor/model/dataset.h"
-#include "alloycolor/model/error.h"
-#include "alloycolor/model/io.h"
+#include "alloycolor/core/dataset.h"
+#include "alloycolor/core/error.h"
+#include "alloycolor/core/io.h"
 #include "alloycolor/model/sample_models.h"
-#include "alloycolor/render/material_color.h"
+#include "alloycolor/color/material_color.h"
 #include "test_util.h"
 
 namespace alloycolor {
@@ -31,7 +31,7 @@ using testing::RunProgram;
 using testing::RunResult;
 
 struct Models {
-  render::Colorimeter colorimeter = render::Colorimeter::Load(DataDir(), "D65", 2);
+  color::Colorimeter colorimeter = color::Colorimeter::Load(DataDir(), "D65", 2);
   Dataset dataset = LoadDataset(DataDir() + "/Au-Ag");
   std::vector<std::unique_ptr<AlloyModel>> all;
   Models() {
@@ -49,7 +49,7 @@ const Models& Shared() {
   return models;
 }
 
-double MaxDiff(const render::XYZ& a, const render::XYZ& b) {
+double MaxDiff(const color::XYZ& a, const color::XYZ& b) {
   return std::max({std::abs(a.X - b.X), std::abs(a.Y - b.Y), std::abs(a.Z - b.Z)});
 }
 
@@ -57,12 +57,12 @@ TEST(ColorSweep, ExactEqualsTheMaterialColourChain) {
   const Models& m = Shared();
   for (const auto& model : m.all) {
     for (double angle : {0.0, 45.0, 89.9, 90.0}) {
-      const render::ColorSweep sweep(m.colorimeter, *model, angle);
+      const color::ColorSweep sweep(m.colorimeter, *model, angle);
       for (double x : {0.0, 0.13, 0.5, 0.77, 1.0}) {
         SCOPED_TRACE(model->method() + " angle " + std::to_string(angle) + " x " +
                      std::to_string(x));
-        const render::XYZ expected = render::MaterialXYZ(
-            m.colorimeter, render::IndexOnGrid(m.colorimeter, *model, x), angle);
+        const color::XYZ expected = color::MaterialXYZ(
+            m.colorimeter, color::IndexOnGrid(m.colorimeter, *model, x), angle);
         EXPECT_LT(MaxDiff(sweep.ExactXYZ(x), expected), 1e-12);
       }
     }
@@ -75,9 +75,9 @@ TEST(ColorSweep, TableErrorIsMeasuredAndHolds) {
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
   for (const auto& model : m.all) {
     SCOPED_TRACE(model->method());
-    render::ColorSweep sweep(m.colorimeter, *model, 0.0);
+    color::ColorSweep sweep(m.colorimeter, *model, 0.0);
     ASSERT_TRUE(sweep.BuildTable(0.0, 1.0));
-    EXPECT_LE(sweep.table_error(), render::kSweepTableTolerance);
+    EXPECT_LE(sweep.table_error(), color::kSweepTableTolerance);
     EXPECT_GT(sweep.table_nodes(), 11);
     double worst = 0.0;
     for (int i = 0; i < 2000; ++i) {
@@ -85,7 +85,7 @@ TEST(ColorSweep, TableErrorIsMeasuredAndHolds) {
       worst = std::max(worst, MaxDiff(sweep.XYZAt(x), sweep.ExactXYZ(x)));
     }
     // The midpoints are where cubic interpolation errs most; allow a little beyond.
-    EXPECT_LT(worst, 2 * render::kSweepTableTolerance);
+    EXPECT_LT(worst, 2 * color::kSweepTableTolerance);
     // At the nodes (the ends, the training compositions) the table is exact.
     for (double x : {0.0, 0.3, 1.0}) EXPECT_LT(MaxDiff(sweep.XYZAt(x), sweep.ExactXYZ(x)), 1e-15);
   }
@@ -93,9 +93,9 @@ TEST(ColorSweep, TableErrorIsMeasuredAndHolds) {
 
 TEST(ColorSweep, RefusesWhatItCannotDo) {
   const Models& m = Shared();
-  EXPECT_THROW(render::ColorSweep(m.colorimeter, *m.all[0], 95.0), Error);
-  EXPECT_THROW(render::ColorSweep(m.colorimeter, *m.all[0], std::nan("")), Error);
-  render::ColorSweep sweep(m.colorimeter, *m.all[0], 0.0);
+  EXPECT_THROW(color::ColorSweep(m.colorimeter, *m.all[0], 95.0), Error);
+  EXPECT_THROW(color::ColorSweep(m.colorimeter, *m.all[0], std::nan("")), Error);
+  color::ColorSweep sweep(m.colorimeter, *m.all[0], 0.0);
   EXPECT_FALSE(sweep.BuildTable(0.5, 0.5));  // nothing to tabulate
   EXPECT_FALSE(sweep.has_table());
   EXPECT_TRUE(sweep.BuildTable(1.0, 0.0));  // either order

@@ -23,9 +23,9 @@
 #include <string>
 #include <vector>
 
-#include "alloycolor/model/io.h"
-#include "alloycolor/render/colorimetry.h"
-#include "alloycolor/render/material_color.h"
+#include "alloycolor/core/io.h"
+#include "alloycolor/color/colorimetry.h"
+#include "alloycolor/color/material_color.h"
 #include "test_util.h"
 
 namespace alloycolor {
@@ -123,9 +123,9 @@ TEST_F(AuAgHoldout, ReportJsonHasTheDocumentedShape) {
 
 // The measured and predicted colours recomputed here from files, as a user would.
 TEST_F(AuAgHoldout, DeltaE00AgreesWithPredictOutput) {
-  const render::Colorimeter colorimeter = render::Colorimeter::Load(DataDir(), "D65", 2);
+  const color::Colorimeter colorimeter = color::Colorimeter::Load(DataDir(), "D65", 2);
   const NkSpectrum measured = ReadNkFile(DataDir() + "/Au-Ag/Rioux-Au30Ag70.yml");
-  const auto measured_index = render::IndexOnGrid(colorimeter, measured);
+  const auto measured_index = color::IndexOnGrid(colorimeter, measured);
   for (const std::string method : {"paper", "eps-linear", "smooth"}) {
     SCOPED_TRACE(method);
     const std::string model = *dir_ + "/" + method + ".json";
@@ -136,13 +136,13 @@ TEST_F(AuAgHoldout, DeltaE00AgreesWithPredictOutput) {
     ASSERT_EQ(predict.status, 0) << predict.err;
     const std::string csv = *dir_ + "/" + method + ".csv";
     testing::WriteText(csv, predict.out);
-    const auto predicted_index = render::IndexOnGrid(colorimeter, ReadNkCsv(csv));
+    const auto predicted_index = color::IndexOnGrid(colorimeter, ReadNkCsv(csv));
     for (double angle : {0.0, 45.0}) {
-      const render::Lab a = render::LabFromXYZ(
-          render::MaterialXYZ(colorimeter, measured_index, angle), colorimeter.White());
-      const render::Lab b = render::LabFromXYZ(
-          render::MaterialXYZ(colorimeter, predicted_index, angle), colorimeter.White());
-      const double expected = render::DeltaE00(a, b);
+      const color::Lab a = color::LabFromXYZ(
+          color::MaterialXYZ(colorimeter, measured_index, angle), colorimeter.White());
+      const color::Lab b = color::LabFromXYZ(
+          color::MaterialXYZ(colorimeter, predicted_index, angle), colorimeter.White());
+      const double expected = color::DeltaE00(a, b);
       const std::string key = angle == 0.0 ? "0" : "45";
       const double reported =
           (*report_)["holdouts"][0]["results"][method]["delta_e00"][key].get<double>();

@@ -9,16 +9,15 @@
 #include <sstream>
 
 #include "alloycolor/fit/physical_costs.h"
-#include "alloycolor/model/error.h"
+#include "alloycolor/core/error.h"
 #include "alloycolor/model/optics.h"
-#include "alloycolor/model/units.h"
+#include "alloycolor/core/units.h"
 
 namespace alloycolor::fit {
 namespace {
 
 constexpr int kEndStarts = 3;        // grid-search starts refined per end sample
 constexpr int kRaceIterations = 30;  // joint starts race this far before the best goes on
-constexpr double kPi = 3.14159265358979323846;
 
 // The data of one sample on the fit grid: every finite point.
 struct SampleData {

@@ -9,9 +9,9 @@
 #include <cmath>
 #include <sstream>
 
-#include "alloycolor/model/error.h"
+#include "alloycolor/core/error.h"
 #include "alloycolor/model/optics.h"
-#include "alloycolor/model/units.h"
+#include "alloycolor/core/units.h"
 
 namespace alloycolor::fit {
 namespace {

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <sstream>
 
-#include "alloycolor/model/error.h"
-#include "alloycolor/model/io.h"
+#include "alloycolor/core/error.h"
+#include "alloycolor/core/io.h"
 #include "alloycolor/model/optics.h"
 #include "alloycolor/model/physical_model.h"
 #include "alloycolor/model/sample_models.h"

@@ -5,14 +5,13 @@
 #include <random>
 #include <sstream>
 
-#include "alloycolor/model/error.h"
-#include "alloycolor/model/units.h"
+#include "alloycolor/core/error.h"
+#include "alloycolor/core/units.h"
 
 namespace alloycolor {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 struct KindName {
   TermKind kind;

@@ -4,8 +4,8 @@
 #include <algorithm>
 #include <random>
 
-#include "alloycolor/model/error.h"
-#include "alloycolor/model/units.h"
+#include "alloycolor/core/error.h"
+#include "alloycolor/core/units.h"
 
 namespace alloycolor {
 namespace {

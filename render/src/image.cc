@@ -9,9 +9,9 @@
 #include <cstring>
 #include <limits>
 
-#include "alloycolor/model/error.h"
-#include "alloycolor/model/io.h"
-#include "alloycolor/render/colorimetry.h"
+#include "alloycolor/core/error.h"
+#include "alloycolor/core/io.h"
+#include "alloycolor/color/colorimetry.h"
 
 namespace alloycolor::render {
 namespace {
@@ -40,7 +40,7 @@ class SRGB8Encoder {
 
   static int Code(float v) {
     const double clamped = std::clamp(static_cast<double>(v), 0.0, 1.0);
-    return static_cast<int>(std::lround(255.0 * SRGBEncode(clamped)));
+    return static_cast<int>(std::lround(255.0 * color::SRGBEncode(clamped)));
   }
 
   SRGB8Encoder() {
@@ -64,7 +64,7 @@ class SRGB8Encoder {
 
 std::uint16_t EncodeSRGB16Sample(float linear) {
   const double clamped = linear > 0.0f ? std::min(static_cast<double>(linear), 1.0) : 0.0;
-  return static_cast<std::uint16_t>(std::lround(65535.0 * SRGBEncode(clamped)));
+  return static_cast<std::uint16_t>(std::lround(65535.0 * color::SRGBEncode(clamped)));
 }
 
 template <typename T>

@@ -5,13 +5,13 @@
 #include <sstream>
 #include <utility>
 
-#include "alloycolor/model/error.h"
+#include "alloycolor/core/error.h"
+#include "alloycolor/core/units.h"
 #include "parallel.h"
 
 namespace alloycolor::render {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // Where rays start, in front of every object (world units).
 constexpr double kRayStartZ = 4.0;
 // A pixel whose corners' depths differ from its centre's by more than this (world units)
@@ -37,9 +37,9 @@ struct CornerHit {
 struct SRGBMatrix {
   double m[3][3];
   SRGBMatrix() {
-    const XYZ unit[3] = {{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}};
+    const color::XYZ unit[3] = {{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}};
     for (int c = 0; c < 3; ++c) {
-      const RGB column = LinearSRGBFromXYZ(unit[c]);
+      const color::RGB column = color::LinearSRGBFromXYZ(unit[c]);
       m[0][c] = column.r;
       m[1][c] = column.g;
       m[2][c] = column.b;
@@ -141,7 +141,7 @@ Background BackgroundFromName(const std::string& name) {
   throw Error("unknown background '" + name + "' (transparent, backdrop)");
 }
 
-Renderer::Renderer(const Colorimeter& colorimeter, const RenderOptions& options)
+Renderer::Renderer(const color::Colorimeter& colorimeter, const RenderOptions& options)
     : colorimeter_(colorimeter), options_(options), environment_(options.lighting) {
   CheckOptions(options_);
   if (options_.lighting == Lighting::kStudio && options_.roughness > 0.0) {
@@ -188,7 +188,7 @@ LinearImage Renderer::RenderWith(const Reflection& reflection) const {
   const Geometry geometry(options_.shape);
   const bool uniform = options_.lighting == Lighting::kUniform;
   const bool transparent = options_.background == Background::kTransparent;
-  const XYZ white = colorimeter_.White();
+  const color::XYZ white = colorimeter_.White();
   const Vec3 view{0.0, 0.0, 1.0};
 
   const auto intersect = [&](double px, double py) {
@@ -197,19 +197,19 @@ LinearImage Renderer::RenderWith(const Reflection& reflection) const {
   // XYZ of the light the object sends toward the camera at a hit.
   const auto shade = [&](const Hit& hit) {
     const double mu = std::max(0.0, hit.normal.z);
-    const XYZ c = reflection.At(mu);
+    const color::XYZ c = reflection.At(mu);
     if (uniform) return c;
     const Vec3 r = Reflect(view, hit.normal);
     const double e = prefiltered_ ? prefiltered_->At(r) : environment_.Radiance(r);
-    return XYZ{e * c.X, e * c.Y, e * c.Z};
+    return color::XYZ{e * c.X, e * c.Y, e * c.Z};
   };
   const auto backdrop = [&](double px, double py) {
     const double e = environment_.Backdrop(px / size, py / size);
-    return XYZ{e * white.X, e * white.Y, e * white.Z};
+    return color::XYZ{e * white.X, e * white.Y, e * white.Z};
   };
   static const SRGBMatrix kMatrix;
   const auto& m = kMatrix.m;
-  const auto store = [&m](float* pixel, const XYZ& c, double alpha) {
+  const auto store = [&m](float* pixel, const color::XYZ& c, double alpha) {
     pixel[0] = static_cast<float>(m[0][0] * c.X + m[0][1] * c.Y + m[0][2] * c.Z);
     pixel[1] = static_cast<float>(m[1][0] * c.X + m[1][1] * c.Y + m[1][2] * c.Z);
     pixel[2] = static_cast<float>(m[2][0] * c.X + m[2][1] * c.Y + m[2][2] * c.Z);
@@ -246,22 +246,22 @@ LinearImage Renderer::RenderWith(const Reflection& reflection) const {
               if (centre.hit) {
                 store(pixel, shade(centre), 1.0);
               } else if (transparent) {
-                store(pixel, XYZ{0.0, 0.0, 0.0}, 0.0);
+                store(pixel, color::XYZ{0.0, 0.0, 0.0}, 0.0);
               } else {
                 store(pixel, backdrop(i + 0.5, j + 0.5), 1.0);
               }
               continue;
             }
-            XYZ object{0.0, 0.0, 0.0}, background{0.0, 0.0, 0.0};
+            color::XYZ object{0.0, 0.0, 0.0}, background{0.0, 0.0, 0.0};
             int hits = 0;
             for (int b = 0; b < kEdgeSamples; ++b) {
               for (int a = 0; a < kEdgeSamples; ++a) {
                 const double px = i + (a + 0.5) / kEdgeSamples;
                 const double py = j + (b + 0.5) / kEdgeSamples;
                 const Hit hit = intersect(px, py);
-                const XYZ c =
-                    hit.hit ? shade(hit) : (transparent ? XYZ{0, 0, 0} : backdrop(px, py));
-                XYZ& sum = hit.hit ? object : background;
+                const color::XYZ c =
+                    hit.hit ? shade(hit) : (transparent ? color::XYZ{0, 0, 0} : backdrop(px, py));
+                color::XYZ& sum = hit.hit ? object : background;
                 sum.X += c.X;
                 sum.Y += c.Y;
                 sum.Z += c.Z;
@@ -271,7 +271,7 @@ LinearImage Renderer::RenderWith(const Reflection& reflection) const {
             const int total = kEdgeSamples * kEdgeSamples;
             const double coverage = static_cast<double>(hits) / total;
             // The object's colour: in uniform light exactly the centre ray's when it hits.
-            XYZ colour{0.0, 0.0, 0.0};
+            color::XYZ colour{0.0, 0.0, 0.0};
             if (uniform && centre.hit) {
               colour = shade(centre);
             } else if (hits > 0) {
@@ -281,11 +281,11 @@ LinearImage Renderer::RenderWith(const Reflection& reflection) const {
               store(pixel, colour, coverage);
             } else {
               const int misses = total - hits;
-              const XYZ bg = misses > 0 ? XYZ{background.X / misses, background.Y / misses,
+              const color::XYZ bg = misses > 0 ? color::XYZ{background.X / misses, background.Y / misses,
                                               background.Z / misses}
-                                        : XYZ{0.0, 0.0, 0.0};
+                                        : color::XYZ{0.0, 0.0, 0.0};
               store(pixel,
-                    XYZ{coverage * colour.X + (1.0 - coverage) * bg.X,
+                    color::XYZ{coverage * colour.X + (1.0 - coverage) * bg.X,
                         coverage * colour.Y + (1.0 - coverage) * bg.Y,
                         coverage * colour.Z + (1.0 - coverage) * bg.Z},
                     1.0);

@@ -5,14 +5,14 @@
 #include <cmath>
 #include <sstream>
 
-#include "alloycolor/model/error.h"
+#include "alloycolor/core/error.h"
+#include "alloycolor/core/units.h"
 #include "alloycolor/model/optics.h"
 #include "parallel.h"
 
 namespace alloycolor::render {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // Grazing incidence for the lobe integral: at mu = 0 exactly the GGX visible-normal
 // distribution degenerates; the albedo is continuous there.
 constexpr double kMinLobeMu = 1e-4;
@@ -71,18 +71,18 @@ Vec3 SampleVisibleNormal(const Vec3& v, double alpha, double u1, double u2) {
 // Directional albedo of the GGX surface: the mean over visible normals h of
 // F(v.h) G2(v, l) / G1(v), l the mirror of v about h; fresnel(c) gives XYZ at cosine c.
 template <typename Fresnel>
-XYZ LobeAlbedo(double alpha, double mu, const Fresnel& fresnel) {
+color::XYZ LobeAlbedo(double alpha, double mu, const Fresnel& fresnel) {
   mu = std::clamp(mu, kMinLobeMu, 1.0);
   const Vec3 v{std::sqrt(1.0 - mu * mu), 0.0, mu};
   const double lambda_v = SmithLambda(alpha, mu);
-  XYZ sum{0.0, 0.0, 0.0};
+  color::XYZ sum{0.0, 0.0, 0.0};
   for (const auto& u : Hammersley<kLobeSamples>()) {
     const Vec3 h = SampleVisibleNormal(v, alpha, u[0], u[1]);
     const double vh = Dot(v, h);
     const double nl = 2.0 * vh * h.z - mu;  // (Reflect(v, h)).z
     if (nl <= 0.0 || vh <= 0.0) continue;
     const double weight = (1.0 + lambda_v) / (1.0 + lambda_v + SmithLambda(alpha, nl));
-    const XYZ f = fresnel(vh);
+    const color::XYZ f = fresnel(vh);
     sum.X += weight * f.X;
     sum.Y += weight * f.Y;
     sum.Z += weight * f.Z;
@@ -166,7 +166,7 @@ Vec3 LatLongDirection(double theta, double phi) {
 
 }  // namespace
 
-DirectReflection::DirectReflection(const Colorimeter& colorimeter,
+DirectReflection::DirectReflection(const color::Colorimeter& colorimeter,
                                    std::vector<std::complex<double>> index, double roughness_alpha)
     : wx_(colorimeter.wx()),
       wy_(colorimeter.wy()),
@@ -181,9 +181,9 @@ DirectReflection::DirectReflection(const Colorimeter& colorimeter,
   CheckRoughness(alpha_);
 }
 
-XYZ DirectReflection::FresnelXYZ(double c) const {
+color::XYZ DirectReflection::FresnelXYZ(double c) const {
   c = std::clamp(c, 0.0, 1.0);
-  XYZ xyz{0.0, 0.0, 0.0};
+  color::XYZ xyz{0.0, 0.0, 0.0};
   for (std::size_t i = 0; i < index_.size(); ++i) {
     const Complex<double> nk{index_[i].real(), index_[i].imag()};
     const double r = FresnelReflectance(nk, c).Average();
@@ -201,7 +201,7 @@ DirectReflection DirectReflection::WithRoughness(double roughness_alpha) const {
   return copy;
 }
 
-XYZ DirectReflection::At(double mu) const {
+color::XYZ DirectReflection::At(double mu) const {
   if (alpha_ == 0.0) return FresnelXYZ(mu);
   return LobeAlbedo(alpha_, mu, [this](double c) { return FresnelXYZ(c); });
 }
@@ -209,7 +209,7 @@ XYZ DirectReflection::At(double mu) const {
 ReflectionTable::ReflectionTable(const DirectReflection& direct, int size)
     : last_(std::max(size, 2) - 1), alpha_(direct.roughness()) {
   xyz_.resize(3 * static_cast<std::size_t>(last_ + 1));
-  const auto store = [this](int i, const XYZ& v) {
+  const auto store = [this](int i, const color::XYZ& v) {
     xyz_[3 * i] = v.X;
     xyz_[3 * i + 1] = v.Y;
     xyz_[3 * i + 2] = v.Z;
@@ -232,8 +232,8 @@ double ReflectionTableError(const ReflectionTable& table, const DirectReflection
   for (int s = 0; s < samples; ++s) {
     // Irrational offsets keep the samples off the nodes, where the error is largest.
     const double mu = std::fmod((s + 0.5) / samples + 0.5 * 0.6180339887498949 / nodes, 1.0);
-    const XYZ t = table.At(mu);
-    const XYZ d = direct.At(mu);
+    const color::XYZ t = table.At(mu);
+    const color::XYZ d = direct.At(mu);
     const double dx[3] = {t.X - d.X, t.Y - d.Y, t.Z - d.Z};
     const double ref[3] = {d.X, d.Y, d.Z};
     for (int c = 0; c < 3; ++c) {

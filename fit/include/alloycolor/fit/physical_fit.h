@@ -39,7 +39,7 @@
 #include <string>
 #include <vector>
 
-#include "alloycolor/model/dataset.h"
+#include "alloycolor/core/dataset.h"
 #include "alloycolor/model/physical_model.h"
 
 namespace alloycolor::fit {

@@ -28,7 +28,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "alloycolor/model/dataset.h"
+#include "alloycolor/core/dataset.h"
 #include "alloycolor/model/smooth_model.h"
 
 namespace alloycolor::fit {

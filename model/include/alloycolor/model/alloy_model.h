@@ -22,8 +22,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "alloycolor/model/composition.h"
-#include "alloycolor/model/dataset.h"
+#include "alloycolor/core/composition.h"
+#include "alloycolor/core/dataset.h"
 
 namespace alloycolor {
 

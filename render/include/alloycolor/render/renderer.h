@@ -37,7 +37,7 @@
 #include <string>
 #include <vector>
 
-#include "alloycolor/render/colorimetry.h"
+#include "alloycolor/color/colorimetry.h"
 #include "alloycolor/render/image.h"
 #include "alloycolor/render/shading.h"
 
@@ -73,7 +73,7 @@ class Renderer {
  public:
   // Checks the options (Error naming the one at fault) and prepares the environment
   // (for a rough surface in studio light, its prefiltered version).
-  Renderer(const Colorimeter& colorimeter, const RenderOptions& options);
+  Renderer(const color::Colorimeter& colorimeter, const RenderOptions& options);
   ~Renderer();
   Renderer(Renderer&&) noexcept;
 
@@ -94,7 +94,7 @@ class Renderer {
   template <typename Reflection>
   LinearImage RenderWith(const Reflection& reflection) const;
 
-  Colorimeter colorimeter_;
+  color::Colorimeter colorimeter_;
   RenderOptions options_;
   Environment environment_;
   std::unique_ptr<PrefilteredEnvironment> prefiltered_;

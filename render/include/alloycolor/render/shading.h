@@ -35,7 +35,7 @@
 #include <string>
 #include <vector>
 
-#include "alloycolor/render/colorimetry.h"
+#include "alloycolor/color/colorimetry.h"
 
 namespace alloycolor::render {
 
@@ -63,14 +63,14 @@ class DirectReflection {
  public:
   // index: n + i k on the colorimeter's grid (IndexOnGrid). Throws Error for a size
   // mismatch or a roughness outside [0, kMaxRoughness].
-  DirectReflection(const Colorimeter& colorimeter, std::vector<std::complex<double>> index,
+  DirectReflection(const color::Colorimeter& colorimeter, std::vector<std::complex<double>> index,
                    double roughness_alpha);
 
   // XYZ for mu = cos(theta) in [0, 1] (clamped): sum_l w R(l, mu), or A_XYZ(mu) for a
   // rough surface.
-  XYZ At(double mu) const;
+  color::XYZ At(double mu) const;
   // sum_l w R(l, c) for a smooth surface at cosine c, whatever the roughness.
-  XYZ FresnelXYZ(double c) const;
+  color::XYZ FresnelXYZ(double c) const;
   double roughness() const { return alpha_; }
   // The same material with another roughness.
   DirectReflection WithRoughness(double roughness_alpha) const;
@@ -88,7 +88,7 @@ class ReflectionTable {
   // a finer smooth table that the lobe integral reads).
   explicit ReflectionTable(const DirectReflection& direct, int size = kReflectionTableSize);
 
-  XYZ At(double mu) const {
+  color::XYZ At(double mu) const {
     const double t = (mu > 0.0 ? (mu < 1.0 ? mu : 1.0) : 0.0) * last_;
     int i = static_cast<int>(t);
     if (i >= last_) i = last_ - 1;

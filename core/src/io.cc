@@ -1,4 +1,4 @@
-#include "alloycolor/model/io.h"
+#include "alloycolor/core/io.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -19,7 +19,7 @@
 #include <system_error>
 #include <vector>
 
-#include "alloycolor/model/error.h"
+#include "alloycolor/core/error.h"
 
 namespace alloycolor {
 namespace {

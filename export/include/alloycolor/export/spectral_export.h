@@ -25,16 +25,16 @@
 // short of 360 or 830 nm but cover 380-780 nm, a point at 360 or 830 nm holds n and k at
 // their values at the end of the data, and a comment line says so, as the colour
 // computations do (material_color.h); data not covering 380-780 nm are refused.
-#ifndef ALLOYCOLOR_RENDER_SPECTRAL_EXPORT_H_
-#define ALLOYCOLOR_RENDER_SPECTRAL_EXPORT_H_
+#ifndef ALLOYCOLOR_EXPORT_SPECTRAL_EXPORT_H_
+#define ALLOYCOLOR_EXPORT_SPECTRAL_EXPORT_H_
 
 #include <string>
 #include <vector>
 
 #include "alloycolor/model/alloy_model.h"
-#include "alloycolor/model/spectrum.h"
+#include "alloycolor/core/spectrum.h"
 
-namespace alloycolor::render {
+namespace alloycolor::exports {
 
 inline constexpr double kExportMinNm = 360.0;
 inline constexpr double kExportMaxNm = 830.0;
@@ -73,6 +73,6 @@ std::string MitsubaBsdfXml(const ConductorSpectra& spectra, const std::string& i
                            const std::string& eta_file, const std::string& k_file,
                            const std::vector<std::string>& header = {});
 
-}  // namespace alloycolor::render
+}  // namespace alloycolor::exports
 
-#endif  // ALLOYCOLOR_RENDER_SPECTRAL_EXPORT_H_
+#endif  // ALLOYCOLOR_EXPORT_SPECTRAL_EXPORT_H_

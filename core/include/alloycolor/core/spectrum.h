@@ -1,7 +1,7 @@
 // Optical constants n(lambda), k(lambda) on an explicit wavelength grid (nm). Resampling
 // is explicit (NkAt, Resample), linear in n and k, and refuses to extrapolate.
-#ifndef ALLOYCOLOR_MODEL_SPECTRUM_H_
-#define ALLOYCOLOR_MODEL_SPECTRUM_H_
+#ifndef ALLOYCOLOR_CORE_SPECTRUM_H_
+#define ALLOYCOLOR_CORE_SPECTRUM_H_
 
 #include <complex>
 #include <string>
@@ -32,4 +32,4 @@ std::vector<double> UniformGrid(double first_nm, double last_nm, double step_nm)
 
 }  // namespace alloycolor
 
-#endif  // ALLOYCOLOR_MODEL_SPECTRUM_H_
+#endif  // ALLOYCOLOR_CORE_SPECTRUM_H_

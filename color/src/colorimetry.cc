@@ -1,4 +1,4 @@
-#include "alloycolor/render/colorimetry.h"
+#include "alloycolor/color/colorimetry.h"
 
 #include <algorithm>
 #include <cctype>
@@ -9,14 +9,14 @@
 #include <sstream>
 #include <utility>
 
-#include "alloycolor/model/error.h"
+#include "alloycolor/core/error.h"
+#include "alloycolor/core/units.h"
 
-namespace alloycolor::render {
+namespace alloycolor::color {
 namespace {
 
 using Matrix3 = std::array<std::array<double, 3>, 3>;
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kGridStepNm = 5.0;
 // Wavelengths in the tables are integers of nm; a row is "at" a grid point
 // within this.
@@ -413,4 +413,4 @@ double DeltaE00(const Lab& lab1, const Lab& lab2) {
   return std::sqrt(dl * dl + dc * dc + dh * dh + r_t * dc * dh);
 }
 
-}  // namespace alloycolor::render
+}  // namespace alloycolor::color

@@ -1,20 +1,19 @@
-#include "alloycolor/render/sweep.h"
+#include "alloycolor/color/sweep.h"
 
 #include <algorithm>
 #include <cmath>
 #include <complex>
 #include <sstream>
 
-#include "alloycolor/model/error.h"
+#include "alloycolor/core/error.h"
 #include "alloycolor/model/optics.h"
 #include "alloycolor/model/smooth_model.h"
-#include "alloycolor/model/units.h"
-#include "alloycolor/render/material_color.h"
+#include "alloycolor/core/units.h"
+#include "alloycolor/color/material_color.h"
 
-namespace alloycolor::render {
+namespace alloycolor::color {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 // R = (Rs + Rp) / 2 of eq. 2-4 for eps; at normal incidence the closed form of optics.h.
 double ReflectanceFromEps(const Complex<double>& eps, bool normal, double cos_psi) {
@@ -203,4 +202,4 @@ XYZ ColorSweep::XYZAt(double x_atomic) const {
   return segments_.empty() ? ExactXYZ(x_atomic) : TableXYZ(x_atomic);
 }
 
-}  // namespace alloycolor::render
+}  // namespace alloycolor::color

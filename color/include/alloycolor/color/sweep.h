@@ -17,21 +17,21 @@
 // of every table interval, is at most the tolerance (default 1e-7 in X, Y and Z, each of
 // which lies in [0, ~1.1]); if that needs more than kSweepMaxTableNodes nodes, no table is
 // built and every composition is evaluated exactly.
-#ifndef ALLOYCOLOR_RENDER_SWEEP_H_
-#define ALLOYCOLOR_RENDER_SWEEP_H_
+#ifndef ALLOYCOLOR_COLOR_SWEEP_H_
+#define ALLOYCOLOR_COLOR_SWEEP_H_
 
 #include <array>
 #include <cstdint>
 #include <vector>
 
 #include "alloycolor/model/alloy_model.h"
-#include "alloycolor/render/colorimetry.h"
+#include "alloycolor/color/colorimetry.h"
 
 namespace alloycolor {
 class SmoothModel;
 }  // namespace alloycolor
 
-namespace alloycolor::render {
+namespace alloycolor::color {
 
 inline constexpr double kSweepTableTolerance = 1e-7;
 inline constexpr int kSweepMaxTableNodes = 1 << 20;
@@ -85,6 +85,6 @@ class ColorSweep {
   int table_nodes_ = 0;
 };
 
-}  // namespace alloycolor::render
+}  // namespace alloycolor::color
 
-#endif  // ALLOYCOLOR_RENDER_SWEEP_H_
+#endif  // ALLOYCOLOR_COLOR_SWEEP_H_

@@ -1,4 +1,4 @@
-#include "alloycolor/model/composition.h"
+#include "alloycolor/core/composition.h"
 
 #include <charconv>
 #include <cmath>
@@ -7,8 +7,8 @@
 #include <string_view>
 #include <system_error>
 
-#include "alloycolor/model/error.h"
-#include "alloycolor/model/units.h"
+#include "alloycolor/core/error.h"
+#include "alloycolor/core/units.h"
 
 namespace alloycolor {
 namespace {

@@ -3,14 +3,14 @@
 //    "samples": [{"x": 0.5, "file": "Rioux-Au50Ag50.yml"}, ...]}
 // "composition" is "atomic_fraction_a" or "weight_fraction_a"; "file" is relative to the
 // manifest's folder or absolute. Optional: "name", "source", "notes".
-#ifndef ALLOYCOLOR_MODEL_DATASET_H_
-#define ALLOYCOLOR_MODEL_DATASET_H_
+#ifndef ALLOYCOLOR_CORE_DATASET_H_
+#define ALLOYCOLOR_CORE_DATASET_H_
 
 #include <string>
 #include <vector>
 
-#include "alloycolor/model/composition.h"
-#include "alloycolor/model/spectrum.h"
+#include "alloycolor/core/composition.h"
+#include "alloycolor/core/spectrum.h"
 
 namespace alloycolor {
 
@@ -40,4 +40,4 @@ Dataset WithoutSamples(const Dataset& dataset, const std::vector<double>& exclud
 
 }  // namespace alloycolor
 
-#endif  // ALLOYCOLOR_MODEL_DATASET_H_
+#endif  // ALLOYCOLOR_CORE_DATASET_H_

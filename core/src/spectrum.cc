@@ -1,4 +1,4 @@
-#include "alloycolor/model/spectrum.h"
+#include "alloycolor/core/spectrum.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "alloycolor/model/error.h"
+#include "alloycolor/core/error.h"
 
 namespace alloycolor {
 namespace {

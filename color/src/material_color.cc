@@ -1,14 +1,14 @@
-#include "alloycolor/render/material_color.h"
+#include "alloycolor/color/material_color.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
 
-#include "alloycolor/model/error.h"
+#include "alloycolor/core/error.h"
 #include "alloycolor/model/optics.h"
 
-namespace alloycolor::render {
+namespace alloycolor::color {
 
 ColorResult ColorFromXYZ(const Colorimeter& colorimeter, const XYZ& xyz) {
   ColorResult c;
@@ -89,9 +89,9 @@ nlohmann::json ColorJson(const ColorResult& c) {
           {"paper_rgb", {c.paper_rgb.r, c.paper_rgb.g, c.paper_rgb.b}}};
 }
 
-}  // namespace alloycolor::render
+}  // namespace alloycolor::color
 
-namespace alloycolor::render {
+namespace alloycolor::color {
 
 double DeltaE00Sigma(const Colorimeter& colorimeter, const AlloyModel& model,
                      double x_atomic, double angle_deg, int draws) {
@@ -119,4 +119,4 @@ double DeltaE00Sigma(const Colorimeter& colorimeter, const AlloyModel& model,
   return eps_draws.empty() ? -1.0 : std::sqrt(sum / eps_draws.size());
 }
 
-}  // namespace alloycolor::render
+}  // namespace alloycolor::color

@@ -1,10 +1,11 @@
 // Physical constants and unit conversions (CODATA 2018 exact or recommended values).
 // Energies are photon energies in eV: omega_eV = hbar * omega; gamma_eV = hbar / tau.
-#ifndef ALLOYCOLOR_MODEL_UNITS_H_
-#define ALLOYCOLOR_MODEL_UNITS_H_
+#ifndef ALLOYCOLOR_CORE_UNITS_H_
+#define ALLOYCOLOR_CORE_UNITS_H_
 
 namespace alloycolor {
 
+inline constexpr double kPi = 3.14159265358979323846;
 inline constexpr double kHcEvNm = 1239.8419843320026;     // h c in eV nm
 inline constexpr double kHbarEvFs = 0.6582119569509066;   // hbar in eV fs
 inline constexpr double kAvogadro = 6.02214076e23;        // 1/mol
@@ -18,4 +19,4 @@ inline double GammaEvFromTauFs(double tau_fs) { return kHbarEvFs / tau_fs; }
 
 }  // namespace alloycolor
 
-#endif  // ALLOYCOLOR_MODEL_UNITS_H_
+#endif  // ALLOYCOLOR_CORE_UNITS_H_

@@ -4,8 +4,8 @@
 // A spectrum must cover 380-780 nm; where the colorimeter's grid reaches beyond the data
 // (360-380 and 780-830 nm carry under 0.1 % of Y), n and k are held at the nearest
 // measured wavelength.
-#ifndef ALLOYCOLOR_RENDER_MATERIAL_COLOR_H_
-#define ALLOYCOLOR_RENDER_MATERIAL_COLOR_H_
+#ifndef ALLOYCOLOR_COLOR_MATERIAL_COLOR_H_
+#define ALLOYCOLOR_COLOR_MATERIAL_COLOR_H_
 
 #include <array>
 #include <complex>
@@ -16,10 +16,10 @@
 #include <nlohmann/json.hpp>
 
 #include "alloycolor/model/alloy_model.h"
-#include "alloycolor/model/spectrum.h"
-#include "alloycolor/render/colorimetry.h"
+#include "alloycolor/core/spectrum.h"
+#include "alloycolor/color/colorimetry.h"
 
-namespace alloycolor::render {
+namespace alloycolor::color {
 
 struct ColorResult {
   XYZ xyz;
@@ -65,6 +65,6 @@ double DeltaE00Sigma(const Colorimeter& colorimeter, const AlloyModel& model,
 // "#rrggbb".
 std::string HexColor(const std::array<std::uint8_t, 3>& srgb8);
 
-}  // namespace alloycolor::render
+}  // namespace alloycolor::color
 
-#endif  // ALLOYCOLOR_RENDER_MATERIAL_COLOR_H_
+#endif  // ALLOYCOLOR_COLOR_MATERIAL_COLOR_H_

@@ -7,13 +7,13 @@
 // Every error names the file, and the line where there is one. n and k must lie in
 // [0, kMaxOpticalConstant]. A wavelength repeated
 // with different values is averaged with a warning (real files do this).
-#ifndef ALLOYCOLOR_MODEL_IO_H_
-#define ALLOYCOLOR_MODEL_IO_H_
+#ifndef ALLOYCOLOR_CORE_IO_H_
+#define ALLOYCOLOR_CORE_IO_H_
 
 #include <string>
 #include <vector>
 
-#include "alloycolor/model/spectrum.h"
+#include "alloycolor/core/spectrum.h"
 
 namespace alloycolor {
 
@@ -45,4 +45,4 @@ std::string Fnv1a64Hex(const std::string& bytes);
 
 }  // namespace alloycolor
 
-#endif  // ALLOYCOLOR_MODEL_IO_H_
+#endif  // ALLOYCOLOR_CORE_IO_H_

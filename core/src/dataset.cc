@@ -1,4 +1,4 @@
-#include "alloycolor/model/dataset.h"
+#include "alloycolor/core/dataset.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,8 +11,8 @@
 #include <system_error>
 #include <vector>
 
-#include "alloycolor/model/error.h"
-#include "alloycolor/model/io.h"
+#include "alloycolor/core/error.h"
+#include "alloycolor/core/io.h"
 
 namespace alloycolor {
 namespace {

@@ -9,15 +9,15 @@
 // either observer), taking the illuminant at the multiples of 5 nm without interpolation
 // (A is tabulated at 1 nm), so that a perfect reflector has Y = 1. Tables are read from
 // data/cie/*.csv.
-#ifndef ALLOYCOLOR_RENDER_COLORIMETRY_H_
-#define ALLOYCOLOR_RENDER_COLORIMETRY_H_
+#ifndef ALLOYCOLOR_COLOR_COLORIMETRY_H_
+#define ALLOYCOLOR_COLOR_COLORIMETRY_H_
 
 #include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
 
-namespace alloycolor::render {
+namespace alloycolor::color {
 
 struct XYZ {
   double X, Y, Z;
@@ -78,6 +78,6 @@ Lab LabFromXYZ(const XYZ& xyz, const XYZ& white);
 // CIEDE2000 with kL = kC = kH = 1.
 double DeltaE00(const Lab& lab1, const Lab& lab2);
 
-}  // namespace alloycolor::render
+}  // namespace alloycolor::color
 
-#endif  // ALLOYCOLOR_RENDER_COLORIMETRY_H_
+#endif  // ALLOYCOLOR_COLOR_COLORIMETRY_H_

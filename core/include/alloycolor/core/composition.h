@@ -4,8 +4,8 @@
 //   x_atomic = (w / M_a) / (w / M_a + (1 - w) / M_b).
 // The free-electron density of the alloy assumes ideal mixing of molar volumes (Zen's
 // law): N_e(x) = (x Z_a + (1-x) Z_b) N_A / (x V_a + (1-x) V_b), V = M / rho.
-#ifndef ALLOYCOLOR_MODEL_COMPOSITION_H_
-#define ALLOYCOLOR_MODEL_COMPOSITION_H_
+#ifndef ALLOYCOLOR_CORE_COMPOSITION_H_
+#define ALLOYCOLOR_CORE_COMPOSITION_H_
 
 #include <string>
 
@@ -41,4 +41,4 @@ double FreeElectronDensityM3(double x_a, const AlloySystem& system);
 
 }  // namespace alloycolor
 
-#endif  // ALLOYCOLOR_MODEL_COMPOSITION_H_
+#endif  // ALLOYCOLOR_CORE_COMPOSITION_H_

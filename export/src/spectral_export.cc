@@ -1,4 +1,4 @@
-#include "alloycolor/render/spectral_export.h"
+#include "alloycolor/export/spectral_export.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,10 +7,10 @@
 #include <cstdlib>
 #include <sstream>
 
-#include "alloycolor/model/error.h"
+#include "alloycolor/core/error.h"
 #include "alloycolor/model/smooth_model.h"
 
-namespace alloycolor::render {
+namespace alloycolor::exports {
 namespace {
 
 constexpr double kToleranceNm = 1e-9;
@@ -230,4 +230,4 @@ std::string MitsubaBsdfXml(const ConductorSpectra& spectra, const std::string& i
   return out;
 }
 
-}  // namespace alloycolor::render
+}  // namespace alloycolor::exports

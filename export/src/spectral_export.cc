@@ -8,7 +8,6 @@
 #include <sstream>
 
 #include "alloycolor/core/error.h"
-#include "alloycolor/model/smooth_model.h"
 
 namespace alloycolor::exports {
 namespace {
@@ -138,9 +137,9 @@ std::string Range(const ConductorSpectra& s) {
 }  // namespace
 
 std::vector<double> ModelExportGrid(const AlloyModel& model) {
-  if (const auto* smooth = dynamic_cast<const SmoothModel*>(&model)) {
+  if (const std::vector<double> native = model.native_grid_nm(); !native.empty()) {
     std::vector<double> grid;
-    for (double l : smooth->grid_nm()) {
+    for (double l : native) {
       if (l >= model.lambda_min_nm() - kToleranceNm && l <= model.lambda_max_nm() + kToleranceNm) {
         grid.push_back(std::clamp(l, model.lambda_min_nm(), model.lambda_max_nm()));
       }

@@ -60,6 +60,10 @@ class AlloyModel {
       double x_atomic, const std::vector<double>& lambda_nm, int count,
       std::uint32_t seed) const;
 
+  // The wavelengths the model is defined on, where it has its own grid (nodes between
+  // which it interpolates); empty for a model defined at every wavelength of its range.
+  virtual std::vector<double> native_grid_nm() const { return {}; }
+
   // The complete model file (see above), deterministic for the same model.
   nlohmann::json ToJson() const;
 

@@ -63,6 +63,8 @@ class SmoothModel : public AlloyModel {
       double x_atomic, const std::vector<double>& lambda_nm, int count,
       std::uint32_t seed) const override;
 
+  std::vector<double> native_grid_nm() const override { return grid_nm_; }
+
   int degree() const { return degree_; }
   int basis_size() const { return degree_ + 1; }
   const std::vector<double>& grid_nm() const { return grid_nm_; }

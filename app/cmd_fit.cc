@@ -7,12 +7,10 @@
 #include <iostream>
 #include <map>
 
-#include "alloycolor/fit/physical_fit.h"
-#include "alloycolor/fit/smooth_fit.h"
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/io.h"
-#include "alloycolor/model/sample_models.h"
-#include "alloycolor/model/smooth_model.h"
+#include "alloycolor/fit/methods.h"
+#include "alloycolor/model/registry.h"
 #include "common.h"
 
 namespace alloycolor::app {
@@ -27,8 +25,8 @@ struct FitOptions {
   std::string from;
   int degree = -1;
   int max_degree = 6;
-  double smoothing = 1e-3;
-  double lambda_from = 0, lambda_to = 0, lambda_step = 5;
+  double smoothing = -1;
+  double lambda_from = 0, lambda_to = 0, lambda_step = 0;
   bool no_covariance = false;
   bool quiet = false;
 };
@@ -53,13 +51,10 @@ void ReportChanges(const AlloyModel& old_model, const AlloyModel& model) {
       std::fprintf(stderr, "alloycolor: refit: removed sample %s (x = %g)\n", file.c_str(), s->x_atomic);
     }
   }
-  const auto cost = [](const AlloyModel& m) {
-    return m.fit_statistics().is_object() && m.fit_statistics().contains("final_cost")
-               ? m.fit_statistics()["final_cost"].get<double>()
-               : NAN;
-  };
-  std::fprintf(stderr, "alloycolor: refit: final cost %.6g -> %.6g\n", cost(old_model),
-               cost(model));
+  if (old_model.fit_summary().present() && model.fit_summary().present()) {
+    std::fprintf(stderr, "alloycolor: refit: final cost %.6g -> %.6g\n",
+                 old_model.fit_summary().final_cost, model.fit_summary().final_cost);
+  }
   const double lo = std::max(old_model.lambda_min_nm(), model.lambda_min_nm());
   const double hi = std::min(old_model.lambda_max_nm(), model.lambda_max_nm());
   if (!(lo < hi)) return;
@@ -78,21 +73,16 @@ void ReportChanges(const AlloyModel& old_model, const AlloyModel& model) {
                "alloycolor: refit: largest change of the prediction, %g-%g nm, x in [%g, %g]: "
                "|dn| %.3g, |dk| %.3g\n",
                lo, hi, model.x_min(), model.x_max(), dn, dk);
-  if (const auto* a = dynamic_cast<const SmoothModel*>(&old_model)) {
-    const auto* b = dynamic_cast<const SmoothModel*>(&model);
-    if (b && a->degree() == b->degree() && a->grid_nm() == b->grid_nm()) {
-      double shift = 0;
-      for (size_t j = 0; j < a->coeffs().size(); ++j) {
-        for (size_t d = 0; d < a->coeffs()[j].size(); ++d) {
-          shift = std::max(shift, std::abs(a->coeffs()[j][d] - b->coeffs()[j][d]));
-        }
-      }
-      std::fprintf(stderr, "alloycolor: refit: largest coefficient shift %.3g\n", shift);
-    }
+  const std::vector<double> a = old_model.FittedCoefficients();
+  const std::vector<double> b = model.FittedCoefficients();
+  if (!a.empty() && a.size() == b.size() && old_model.native_grid_nm() == model.native_grid_nm()) {
+    double shift = 0;
+    for (size_t i = 0; i < a.size(); ++i) shift = std::max(shift, std::abs(a[i] - b[i]));
+    std::fprintf(stderr, "alloycolor: refit: largest coefficient shift %.3g\n", shift);
   }
 }
 
-void Run(const FitOptions& o, CLI::App* cmd) {
+void Run(const FitOptions& o) {
   if (o.out.empty()) throw Error("--out: give the model file to write");
   namespace fs = std::filesystem;
   std::error_code ec;
@@ -116,69 +106,30 @@ void Run(const FitOptions& o, CLI::App* cmd) {
   std::unique_ptr<AlloyModel> old_model;
   if (!o.from.empty()) old_model = ReadModelFile(o.from);
   const auto start = std::chrono::steady_clock::now();
-  std::unique_ptr<AlloyModel> model;
-  if (o.method == "smooth") {
-    fit::SmoothFitOptions options;
-    options.degree = o.degree;
-    options.max_degree = o.max_degree;
-    options.smoothing = o.smoothing;
-    options.covariance = !o.no_covariance;
-    if (cmd->count("--lambda-from") || cmd->count("--lambda-to")) {
-      if (!(o.lambda_to > o.lambda_from) || !(o.lambda_step > 0)) {
-        throw Error("--lambda-from/--lambda-to/--lambda-step: need from < to, step > 0");
-      }
-      options.grid_nm = UniformGrid(o.lambda_from, o.lambda_to, o.lambda_step);
-    }
-    const auto* old_smooth = dynamic_cast<const SmoothModel*>(old_model.get());
-    if (old_model && !old_smooth) {
-      throw Error("--from " + o.from + " is a " + old_model->method() +
-                  " model; a smooth refit needs a smooth model");
-    }
-    if (old_smooth) {
-      options.start = old_smooth;
-      if (o.degree < 0) options.degree = old_smooth->degree();
-      if (options.grid_nm.empty()) options.grid_nm = old_smooth->grid_nm();
-    }
-    if (!o.quiet) {
-      options.progress = [](const std::string& m) { std::cerr << "alloycolor: " << m << "\n"; };
-    }
-    model = std::move(fit::FitSmooth(dataset, options).model);
-  } else if (o.method == "physical") {
-    fit::PhysicalFitOptions options;
-    if (o.degree >= 0) options.degree = o.degree;
-    options.terms = o.terms;
-    options.covariance = !o.no_covariance;
-    if (cmd->count("--lambda-from") || cmd->count("--lambda-to")) {
-      if (!(o.lambda_from > 0) || !(o.lambda_to > o.lambda_from)) {
-        throw Error("--lambda-from/--lambda-to: need 0 < from < to");
-      }
-      options.lambda_from_nm = o.lambda_from;
-      options.lambda_to_nm = o.lambda_to;
-    }
-    if (cmd->count("--lambda-step")) {
-      if (!(o.lambda_step > 0)) throw Error("--lambda-step: need a positive step");
-      options.lambda_step_nm = o.lambda_step;
-    }
-    if (!o.quiet) {
-      options.progress = [](const std::string& m) { std::cerr << "alloycolor: " << m << "\n"; };
-    }
-    model = std::move(fit::FitPhysical(dataset, options).model);
-  } else {
-    model = BuildModel(o.method, dataset, o.quiet);
-  }
+  fit::FitSettings settings;
+  settings.degree = o.degree;
+  settings.max_degree = o.max_degree;
+  settings.smoothing = o.smoothing;
+  settings.terms = o.terms;
+  settings.covariance = !o.no_covariance;
+  settings.lambda_from_nm = o.lambda_from;
+  settings.lambda_to_nm = o.lambda_to;
+  settings.lambda_step_nm = o.lambda_step;
+  settings.start = old_model.get();
+  settings.progress = ProgressPrinter(o.quiet);
+  const std::unique_ptr<AlloyModel> model = fit::BuildModel(o.method, dataset, settings);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!o.quiet) {
     for (const auto& w : model->warnings()) Warn(w);
-    const auto& stats = model->fit_statistics();
-    if (stats.contains("final_cost")) {
+    const FitSummary& stats = model->fit_summary();
+    if (stats.present()) {
       std::fprintf(stderr,
                    "alloycolor: %s fit: degree %d, final cost %.6g, %d iterations, %s, "
                    "RMS relative eps error %.3g, %.3f s\n",
-                   model->method().c_str(), stats["degree"].get<int>(),
-                   stats["final_cost"].get<double>(), stats["iterations"].get<int>(),
-                   stats["converged"].get<bool>() ? "converged" : "NOT converged",
-                   stats["rms_relative_eps"].get<double>(), seconds);
+                   model->method().c_str(), stats.degree, stats.final_cost, stats.iterations,
+                   stats.converged ? "converged" : "NOT converged", stats.rms_relative_eps,
+                   seconds);
     }
     if (old_model) ReportChanges(*old_model, *model);
   }
@@ -203,8 +154,7 @@ void RegisterFit(CLI::App& app) {
       ->required();
   cmd->add_option("--exclude", o->exclude_text,
                   "Leave out the samples at these compositions (comma-separated)");
-  cmd->add_option("--method", o->method, "smooth, physical, paper or eps-linear")
-      ->capture_default_str();
+  cmd->add_option("--method", o->method, MethodsHelp())->capture_default_str();
   cmd->add_option("--out", o->out, "Model file to write (written atomically)")->required();
   cmd->add_option("--from", o->from,
                   "Refit: start from this earlier model and report what changed");
@@ -220,20 +170,18 @@ void RegisterFit(CLI::App& app) {
   cmd->add_option("--max-degree", o->max_degree, "smooth: largest degree cross-validation tries")
       ->capture_default_str();
   cmd->add_option("--smoothing", o->smoothing,
-                  "smooth: weight of the curvature penalty across wavelength")
-      ->capture_default_str();
+                  "smooth: weight of the curvature penalty across wavelength (default 1e-3)");
   cmd->add_option("--lambda-from", o->lambda_from,
                   "smooth, physical: first wavelength of the fit grid, nm (physical default: "
                   "the common range within 300-1000 nm, or all of it for infrared data)");
   cmd->add_option("--lambda-to", o->lambda_to,
                   "smooth, physical: last wavelength of the fit grid, nm");
   cmd->add_option("--lambda-step", o->lambda_step,
-                  "smooth, physical: grid step, nm (physical default: 5, or range/200 in the "
-                  "infrared)")
-      ->capture_default_str();
+                  "smooth, physical: grid step, nm (default 5; physical: range/200 in the "
+                  "infrared)");
   cmd->add_flag("--no-covariance", o->no_covariance, "smooth, physical: skip the covariance");
   cmd->add_flag("--quiet", o->quiet, "No progress or warnings on stderr");
-  cmd->callback([o, cmd]() { Run(*o, cmd); });
+  cmd->callback([o]() { Run(*o); });
 }
 
 }  // namespace alloycolor::app

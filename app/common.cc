@@ -8,11 +8,10 @@
 #include <iostream>
 #include <sstream>
 
-#include "alloycolor/fit/physical_fit.h"
-#include "alloycolor/fit/smooth_fit.h"
+#include "alloycolor/fit/methods.h"
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/io.h"
-#include "alloycolor/model/sample_models.h"
+#include "alloycolor/model/registry.h"
 
 namespace alloycolor::app {
 
@@ -80,29 +79,9 @@ std::vector<double> ParseNumberList(const std::string& text, const std::string& 
   return values;
 }
 
-std::unique_ptr<AlloyModel> BuildModel(const std::string& method, const Dataset& dataset,
-                                       bool quiet) {
-  if (method == "paper") {
-    return std::make_unique<SampleModel>(SampleModel::Kind::kPaper, dataset);
-  }
-  if (method == "eps-linear") {
-    return std::make_unique<SampleModel>(SampleModel::Kind::kEpsLinear, dataset);
-  }
-  if (method == "smooth") {
-    fit::SmoothFitOptions options;
-    if (!quiet) {
-      options.progress = [](const std::string& m) { std::cerr << "alloycolor: " << m << "\n"; };
-    }
-    return std::move(fit::FitSmooth(dataset, options).model);
-  }
-  if (method == "physical") {
-    fit::PhysicalFitOptions options;
-    if (!quiet) {
-      options.progress = [](const std::string& m) { std::cerr << "alloycolor: " << m << "\n"; };
-    }
-    return std::move(fit::FitPhysical(dataset, options).model);
-  }
-  throw Error("unknown method '" + method + "' (paper, eps-linear, smooth, physical)");
+ProgressCallback ProgressPrinter(bool quiet) {
+  if (quiet) return {};
+  return [](const std::string& m) { std::cerr << "alloycolor: " << m << "\n"; };
 }
 
 void WriteOutput(const std::string& path, const std::string& contents, bool quiet) {
@@ -126,6 +105,12 @@ void FlushWarnings() {
   PendingWarnings().clear();
 }
 
+std::string MethodsHelp() {
+  std::string text;
+  for (const MethodInfo& m : Methods()) text += (text.empty() ? "" : "; ") + m.name + ": " + m.summary;
+  return text;
+}
+
 void ModelSource::AddOptions(CLI::App* cmd, bool with_data) {
   cmd->add_option("--model", model_path, "Fitted model file (JSON, from 'alloycolor fit')");
   if (with_data) {
@@ -133,9 +118,7 @@ void ModelSource::AddOptions(CLI::App* cmd, bool with_data) {
                     "Data set: folder with dataset.json, a manifest, or a bundled set's name "
                     "(Au-Ag, Cu-Zn, Nb-Sn)");
     cmd->add_option("--method", method,
-                    "Model built from --data: paper (the paper's baseline), eps-linear, "
-                    "smooth (Ceres fit of tau, m* curves), physical (Ceres fit of Drude + "
-                    "interband terms)")
+                    "Model built from --data: " + MethodsHelp())
         ->capture_default_str();
   }
   cmd->add_flag("--extrapolate", extrapolate,
@@ -152,7 +135,9 @@ std::unique_ptr<AlloyModel> ModelSource::Load(bool quiet) const {
     if (!quiet) {
       for (const std::string& w : dataset.warnings) Warn(w);
     }
-    auto model = BuildModel(method, dataset, quiet);
+    fit::FitSettings settings;
+    settings.progress = ProgressPrinter(quiet);
+    auto model = fit::BuildModel(method, dataset, settings);
     if (!quiet) {
       for (const std::string& w : model->warnings()) Warn(w);
     }

@@ -11,6 +11,7 @@
 
 #include "alloycolor/model/alloy_model.h"
 #include "alloycolor/core/dataset.h"
+#include "alloycolor/core/progress.h"
 #include "alloycolor/color/colorimetry.h"
 
 namespace alloycolor::app {
@@ -30,10 +31,11 @@ std::vector<double> ParseCompositions(const std::string& text, const AlloySystem
 // Comma-separated numbers, naming the option on error.
 std::vector<double> ParseNumberList(const std::string& text, const std::string& option);
 
-// Builds a method's model from a data set without Ceres where possible ("paper",
-// "eps-linear"); "smooth" and "physical" are fitted with their default options.
-std::unique_ptr<AlloyModel> BuildModel(const std::string& method, const Dataset& dataset,
-                                       bool quiet);
+// Progress lines on stderr ("alloycolor: ..."), or none when quiet.
+ProgressCallback ProgressPrinter(bool quiet);
+
+// Every method with its summary, for --help.
+std::string MethodsHelp();
 
 // Writes a file atomically and says so on stderr unless quiet.
 void WriteOutput(const std::string& path, const std::string& contents, bool quiet);

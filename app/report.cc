@@ -17,6 +17,7 @@
 #include "alloycolor/core/spectrum.h"
 #include "alloycolor/core/units.h"
 #include "alloycolor/color/material_color.h"
+#include "alloycolor/fit/methods.h"
 #include "common.h"
 
 namespace alloycolor::app {
@@ -332,7 +333,7 @@ ValidationReport ComputeValidation(const Dataset& dataset,
                " samples, holding out x = " + XList(split.holdout_x));
     }
     try {
-      built[key] = BuildModel(method, WithoutSamples(dataset, split.holdout_x), /*quiet=*/true);
+      built[key] = fit::BuildModel(method, WithoutSamples(dataset, split.holdout_x));
       return built[key].get();
     } catch (const Error& e) {
       failed[key] = e.what();

@@ -44,7 +44,7 @@ void Fit(benchmark::State& state, const Dataset& dataset, double step_nm) {
   int iterations = 0;
   for (auto _ : state) {
     const fit::SmoothFitResult result = fit::FitSmooth(dataset, options);
-    iterations = result.model->fit_statistics().value("iterations", 0);
+    iterations = result.model->fit_summary().iterations;
     benchmark::DoNotOptimize(result.model.get());
   }
   state.counters["samples"] = static_cast<double>(dataset.samples.size());

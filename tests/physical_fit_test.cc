@@ -235,7 +235,7 @@ TEST(PhysicalFit, RecoversKnownParametersWithinTheirUncertainty) {
   options.terms = "cp,cp";
   const auto result = fit::FitPhysical(data, options);
   const PhysicalModel& model = *result.model;
-  ASSERT_TRUE(model.fit_statistics()["converged"].get<bool>());
+  ASSERT_TRUE(model.fit_summary().converged);
   ASSERT_TRUE(model.HasUncertainty());
   const int nc = model.layout().num_coefficients();
   for (int j = 0; j < nc; ++j) {
@@ -273,7 +273,7 @@ Dataset* AuAg::dataset_ = nullptr;
 PhysicalModel* AuAg::model_ = nullptr;
 
 TEST_F(AuAg, ReproducesEverySampleFrom300To1000nm) {
-  EXPECT_EQ(model_->fit_statistics()["terms"], "rioux-gap,rioux-edge");
+  EXPECT_EQ(model_->fit_summary().details["terms"], "rioux-gap,rioux-edge");
   EXPECT_EQ(model_->lambda_min_nm(), 300.0);
   EXPECT_EQ(model_->lambda_max_nm(), 1000.0);
   ASSERT_EQ(dataset_->samples.size(), 11u);

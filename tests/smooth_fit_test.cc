@@ -94,7 +94,7 @@ TEST(SmoothFit, RecoversKnownCurves) {
   options.smoothing = 0;  // the truth is not smooth in wavelength by construction
   options.ridge = 0;
   const auto result = fit::FitSmooth(data, options);
-  ASSERT_TRUE(result.model->fit_statistics()["converged"].get<bool>());
+  ASSERT_TRUE(result.model->fit_summary().converged);
   for (double x : {0.1, 0.33, 0.7, 0.95}) {
     for (double lambda : {380.0, 500.0, 640.0, 800.0}) {
       const std::complex<double> e = result.model->Permittivity(x, {lambda})[0];

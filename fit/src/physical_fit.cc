@@ -773,25 +773,26 @@ PhysicalFitResult FitPhysical(const Dataset& dataset, const PhysicalFitOptions& 
   result.terms = InterbandTermsText(kinds);
   result.model = std::make_unique<PhysicalModel>(dataset, data.grid_nm.front(), data.grid_nm.back(),
                                                  layout, best.coeffs, covariance);
-  nlohmann::json fit;
-  fit["method"] = "ceres levenberg-marquardt, dense normal cholesky (eigen)";
+  FitSummary summary;
+  summary.solver = "ceres levenberg-marquardt, dense normal cholesky (eigen)";
+  summary.degree = degree;
+  summary.final_cost = best.cost;
+  summary.iterations = best.iterations;
+  summary.converged = best.converged;
+  summary.termination = best.termination;
+  summary.rms_relative_eps = std::sqrt(2.0 * best.cost / std::max<size_t>(1, residuals));
+  nlohmann::json& fit = summary.details;
   fit["terms"] = result.terms;
   fit["terms_chosen_by"] = terms_option == "auto"
                                ? (data.infrared ? "auto: infrared data, drude only"
                                                 : "auto: lowest BIC of the end samples' fits")
                                : "user";
   if (candidates.size() > 1) fit["terms_candidates"] = auto_scores;
-  fit["degree"] = degree;
   fit["lambda_step_nm"] = data.grid_nm.size() > 1 ? data.grid_nm[1] - data.grid_nm[0] : 0.0;
   fit["wavelengths"] = data.grid_nm.size();
   fit["joint_starts"] = joint_starts;
   fit["end_fit_minima"] = {lo_fits.size(), hi_fits.size()};
-  fit["final_cost"] = best.cost;
-  fit["iterations"] = best.iterations;
-  fit["converged"] = best.converged;
-  fit["termination"] = best.termination;
   fit["data_residuals"] = residuals;
-  fit["rms_relative_eps"] = std::sqrt(2.0 * best.cost / std::max<size_t>(1, residuals));
   nlohmann::json per_sample = nlohmann::json::array();
   for (const auto& s : data.samples) {
     const SampleFit f = SampleMisfit(*result.model, s);
@@ -819,7 +820,7 @@ PhysicalFitResult FitPhysical(const Dataset& dataset, const PhysicalFitOptions& 
     fit["residual_autocorrelation"] = rho;
     fit["variance_inflation"] = inflation;
   }
-  result.model->set_fit_statistics(fit);
+  result.model->set_fit_summary(std::move(summary));
   if (pseudo_inverse) {
     warnings.push_back(
         "the physical fit's Jacobian is rank-deficient; its covariance is a "

@@ -468,19 +468,20 @@ SmoothFitResult FitSmooth(const Dataset& dataset, const SmoothFitOptions& option
   const SolveStats stats =
       SolveAny(nb, g, AllSamples(g), basis, options, options.covariance, cv_variance, &coeffs);
 
-  nlohmann::json fit;
-  fit["method"] = "ceres levenberg-marquardt, sparse normal cholesky (eigen)";
-  fit["degree"] = degree;
+  FitSummary summary;
+  summary.solver = "ceres levenberg-marquardt, sparse normal cholesky (eigen)";
+  summary.degree = degree;
+  summary.final_cost = stats.final_cost;
+  summary.iterations = stats.iterations;
+  summary.converged = stats.converged;
+  summary.termination = stats.termination;
+  summary.rms_relative_eps =
+      std::sqrt(stats.data_sum_sq / std::max<double>(1.0, static_cast<double>(stats.data_residuals)));
+  nlohmann::json& fit = summary.details;
   fit["degree_chosen_by"] = options.degree < 0 ? "leave-one-out cross-validation" : "user";
   fit["smoothing"] = options.smoothing;
   fit["ridge"] = options.ridge;
-  fit["final_cost"] = stats.final_cost;
-  fit["iterations"] = stats.iterations;
-  fit["converged"] = stats.converged;
-  fit["termination"] = stats.termination;
   fit["data_residuals"] = stats.data_residuals;
-  fit["rms_relative_eps"] =
-      std::sqrt(stats.data_sum_sq / std::max<double>(1.0, static_cast<double>(stats.data_residuals)));
   nlohmann::json per_sample = nlohmann::json::array();
   for (size_t i = 0; i < n; ++i) {
     per_sample.push_back({{"x", g.x[i]},
@@ -510,7 +511,7 @@ SmoothFitResult FitSmooth(const Dataset& dataset, const SmoothFitOptions& option
 
   result.model = std::make_unique<SmoothModel>(dataset, grid, degree, std::move(coeffs),
                                                stats.covariance);
-  result.model->set_fit_statistics(fit);
+  result.model->set_fit_summary(std::move(summary));
   result.model->AddWarnings(g.warnings);
   if (!stats.converged) {
     result.model->AddWarnings({"the fit stopped before convergence: " + stats.termination});

@@ -7,9 +7,7 @@
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/io.h"
 #include "alloycolor/model/optics.h"
-#include "alloycolor/model/physical_model.h"
-#include "alloycolor/model/sample_models.h"
-#include "alloycolor/model/smooth_model.h"
+#include "alloycolor/model/registry.h"
 
 namespace alloycolor {
 
@@ -81,7 +79,17 @@ nlohmann::json AlloyModel::ToJson() const {
   }
   doc["training_samples"] = samples;
   doc["parameters"] = ParametersJson();
-  doc["fit"] = fit_statistics_;
+  nlohmann::json fit = fit_summary_.details;
+  if (fit_summary_.present()) {
+    fit["method"] = fit_summary_.solver;
+    fit["degree"] = fit_summary_.degree;
+    fit["final_cost"] = fit_summary_.final_cost;
+    fit["iterations"] = fit_summary_.iterations;
+    fit["converged"] = fit_summary_.converged;
+    fit["termination"] = fit_summary_.termination;
+    fit["rms_relative_eps"] = fit_summary_.rms_relative_eps;
+  }
+  doc["fit"] = fit;
   doc["warnings"] = warnings_;
   return doc;
 }
@@ -139,7 +147,36 @@ void AlloyModel::ReadCommon(const nlohmann::json& doc) {
                          String(Field(ts[i], "file", where), where + ".file"),
                          String(Field(ts[i], "checksum", where), where + ".checksum")});
   }
-  fit_statistics_ = doc.value("fit", nlohmann::json::object());
+  fit_summary_ = FitSummary{};
+  if (doc.contains("fit")) {
+    const nlohmann::json& fit = doc.at("fit");
+    if (!fit.is_object()) throw Error("fit: expected an object");
+    if (fit.contains("method")) {
+      fit_summary_.solver = String(fit.at("method"), "fit.method");
+      const double degree = Number(Field(fit, "degree", "fit"), "fit.degree");
+      if (degree != std::floor(degree) || degree < -1 || degree > 100) {
+        throw Error("fit.degree: expected a whole number");
+      }
+      fit_summary_.degree = static_cast<int>(degree);
+      fit_summary_.final_cost = Number(Field(fit, "final_cost", "fit"), "fit.final_cost");
+      const double iterations = Number(Field(fit, "iterations", "fit"), "fit.iterations");
+      if (iterations != std::floor(iterations) || iterations < 0 || iterations > 1e9) {
+        throw Error("fit.iterations: expected a whole number");
+      }
+      fit_summary_.iterations = static_cast<int>(iterations);
+      const nlohmann::json& converged = Field(fit, "converged", "fit");
+      if (!converged.is_boolean()) throw Error("fit.converged: expected true or false");
+      fit_summary_.converged = converged.get<bool>();
+      fit_summary_.termination = String(Field(fit, "termination", "fit"), "fit.termination");
+      fit_summary_.rms_relative_eps =
+          Number(Field(fit, "rms_relative_eps", "fit"), "fit.rms_relative_eps");
+    }
+    fit_summary_.details = fit;
+    for (const char* key : {"method", "degree", "final_cost", "iterations", "converged",
+                            "termination", "rms_relative_eps"}) {
+      fit_summary_.details.erase(key);
+    }
+  }
   warnings_.clear();
   if (doc.contains("warnings")) {
     const nlohmann::json& w = doc.at("warnings");
@@ -162,15 +199,7 @@ std::unique_ptr<AlloyModel> ModelFromJson(const nlohmann::json& doc,
                   std::to_string(kModelFormatVersion) + ")");
     }
     const std::string method = String(Field(doc, "method", "model"), "method");
-    if (method == "paper") {
-      return std::make_unique<SampleModel>(SampleModel::Kind::kPaper, doc, source);
-    }
-    if (method == "eps-linear") {
-      return std::make_unique<SampleModel>(SampleModel::Kind::kEpsLinear, doc, source);
-    }
-    if (method == "smooth") return std::make_unique<SmoothModel>(doc, source);
-    if (method == "physical") return std::make_unique<PhysicalModel>(doc, source);
-    throw Error("unknown method '" + method + "'");
+    return RequireMethod(method).read(doc, source);
   } catch (const nlohmann::json::exception& e) {
     throw Error(source + ": damaged model: " + e.what());
   } catch (const Error& e) {

@@ -105,6 +105,12 @@ void SmoothModel::Validate(const std::string& source) const {
   if (!(x_max() > x_min())) throw Error(where + "x_range must not be empty");
 }
 
+std::vector<double> SmoothModel::FittedCoefficients() const {
+  std::vector<double> all;
+  for (const auto& node : coeffs_) all.insert(all.end(), node.begin(), node.end());
+  return all;
+}
+
 double SmoothModel::BasisArgument(double x_atomic) const {
   return 2.0 * (x_atomic - x_min()) / (x_max() - x_min()) - 1.0;
 }

@@ -30,6 +30,22 @@ namespace alloycolor {
 inline constexpr int kModelFormatVersion = 1;
 inline constexpr const char* kModelFormatName = "alloycolor-model";
 
+// How a fitted model was fitted, as recorded in the model file's "fit" block: the fields
+// every fitted method has, typed, and the method's own further statistics in `details`
+// (written beside them). Baselines built without a fit have none (present() is false).
+struct FitSummary {
+  std::string solver;  // "method" in the file: the solver and its linear algebra
+  int degree = -1;     // composition degree (the smooth model's, or each parameter's)
+  double final_cost = 0;
+  int iterations = 0;
+  bool converged = false;
+  std::string termination;
+  double rms_relative_eps = 0;  // RMS of (eps_model - eps) / |eps| over the data
+  nlohmann::json details = nlohmann::json::object();
+
+  bool present() const { return !solver.empty(); }
+};
+
 // What a model keeps of each training sample (not its data, unless the method needs it).
 struct TrainingSample {
   double x_atomic;
@@ -64,6 +80,10 @@ class AlloyModel {
   // which it interpolates); empty for a model defined at every wavelength of its range.
   virtual std::vector<double> native_grid_nm() const { return {}; }
 
+  // The fitted coefficients in the model file's order (empty for a model that keeps its
+  // samples instead): refits compare them.
+  virtual std::vector<double> FittedCoefficients() const { return {}; }
+
   // The complete model file (see above), deterministic for the same model.
   nlohmann::json ToJson() const;
 
@@ -75,8 +95,8 @@ class AlloyModel {
   double lambda_max_nm() const { return lambda_max_nm_; }
   const std::vector<TrainingSample>& training_samples() const { return training_; }
   const std::vector<std::string>& warnings() const { return warnings_; }
-  const nlohmann::json& fit_statistics() const { return fit_statistics_; }
-  void set_fit_statistics(nlohmann::json stats) { fit_statistics_ = std::move(stats); }
+  const FitSummary& fit_summary() const { return fit_summary_; }
+  void set_fit_summary(FitSummary summary) { fit_summary_ = std::move(summary); }
 
   // Throws Error naming x when it lies outside [x_min, x_max] (beyond 1e-9).
   void CheckInRange(double x_atomic) const;
@@ -98,7 +118,7 @@ class AlloyModel {
   double lambda_min_nm_ = 0.0, lambda_max_nm_ = 0.0;
   std::vector<TrainingSample> training_;
   std::vector<std::string> warnings_;
-  nlohmann::json fit_statistics_ = nlohmann::json::object();
+  FitSummary fit_summary_;
 };
 
 // Reads a model file of any method; throws Error naming the file and the field for a

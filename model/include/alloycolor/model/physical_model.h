@@ -291,6 +291,7 @@ class PhysicalModel : public AlloyModel {
 
   const PhysicalLayout& layout() const { return layout_; }
   const std::vector<double>& coeffs() const { return coeffs_; }
+  std::vector<double> FittedCoefficients() const override { return coeffs_; }
   const std::vector<double>& covariance() const { return covariance_; }
   double BasisArgument(double x_atomic) const;
   // Every parameter's value at x, with one-sigma from the coefficients' covariance.

@@ -64,6 +64,7 @@ class SmoothModel : public AlloyModel {
       std::uint32_t seed) const override;
 
   std::vector<double> native_grid_nm() const override { return grid_nm_; }
+  std::vector<double> FittedCoefficients() const override;
 
   int degree() const { return degree_; }
   int basis_size() const { return degree_ + 1; }

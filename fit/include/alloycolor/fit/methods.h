@@ -1,0 +1,48 @@
+// Building a model from a data set, for every method of the registry (model/registry.h):
+// the builders sit here, under the same names, because fitting is the only place that
+// builds a model from data. Baselines that keep the samples (paper, eps-linear) need no
+// solver; the fitted methods run their Ceres fits (smooth_fit.h, physical_fit.h).
+//
+// FitSettings are the options a user can give any method; a method uses those that apply
+// to it and refuses values that make no sense for it, naming the option.
+#ifndef ALLOYCOLOR_FIT_METHODS_H_
+#define ALLOYCOLOR_FIT_METHODS_H_
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "alloycolor/core/dataset.h"
+#include "alloycolor/core/progress.h"
+#include "alloycolor/model/alloy_model.h"
+
+namespace alloycolor::fit {
+
+struct FitSettings {
+  int degree = -1;      // composition degree; < 0: the method's default or chosen from data
+  int max_degree = 6;   // smooth: the largest degree cross-validation tries
+  double smoothing = -1;  // smooth: curvature penalty across wavelength; -1: default
+  std::string terms = "auto";  // physical: interband terms
+  // Fit grid: both 0 for the method's default range; step 0 for its default step.
+  double lambda_from_nm = 0, lambda_to_nm = 0, lambda_step_nm = 0;
+  bool covariance = true;
+  const AlloyModel* start = nullptr;  // refit: start from this model (same method)
+  ProgressCallback progress;          // may be empty
+};
+
+struct MethodBuilder {
+  std::string name;  // as in Methods()
+  std::unique_ptr<AlloyModel> (*build)(const Dataset& dataset, const FitSettings& settings);
+};
+
+// One builder per entry of Methods(), in the same order.
+const std::vector<MethodBuilder>& Builders();
+
+// Builds `method` on the data set; throws Error for an unknown method (listing the known
+// ones), a bad setting (naming the option) or data the method cannot use.
+std::unique_ptr<AlloyModel> BuildModel(const std::string& method, const Dataset& dataset,
+                                       const FitSettings& settings = {});
+
+}  // namespace alloycolor::fit
+
+#endif  // ALLOYCOLOR_FIT_METHODS_H_

@@ -61,13 +61,13 @@ void Run(const ChartOptions& o) {
   const bool weight =
       o.labels.empty() ? model->composition() == "weight_fraction_a" : o.labels == "weight";
   const CompositionChart chart =
-      ComputeChart(*model, colorimeter, from, to, o.steps, o.angle_deg, weight);
+      validate::ComputeChart(*model, colorimeter, from, to, o.steps, o.angle_deg, weight);
   if (ext == ".svg") {
     WriteOutput(o.out, ChartSvg(chart), o.quiet);
     return;
   }
   std::string compositions;
-  for (const ChartSwatch& s : chart.swatches) {
+  for (const validate::ChartSwatch& s : chart.swatches) {
     char buf[80];
     std::snprintf(buf, sizeof buf, "%s%.6g %s", compositions.empty() ? "" : ", ", s.x_atomic,
                   color::HexColor(s.srgb8).c_str());

@@ -47,7 +47,7 @@ void Run(const PredictOptions& o, CLI::App* cmd) {
   const std::vector<std::complex<double>> index = model->Index(x, grid);
   std::vector<double> n_sigma, k_sigma;
   if (o.sigma || o.format == "json") {
-    const auto draws = model->PermittivityDraws(x, grid, 64, 20261122u);
+    const auto draws = model->PermittivityDraws(x, grid);
     if (!draws.empty()) {
       n_sigma.assign(grid.size(), 0.0);
       k_sigma.assign(grid.size(), 0.0);

@@ -11,6 +11,8 @@
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/io.h"
 #include "common.h"
+#include "alloycolor/fit/methods.h"
+#include "alloycolor/model/registry.h"
 #include "report.h"
 
 namespace alloycolor::app {
@@ -108,6 +110,7 @@ std::vector<std::string> ParseMethods(const std::string& text) {
   std::vector<std::string> methods;
   for (const std::string& m : SplitList(text)) {
     if (m.empty()) throw Error("--methods: empty method name in '" + text + "'");
+    RequireMethod(m);
     if (std::find(methods.begin(), methods.end(), m) == methods.end()) methods.push_back(m);
   }
   if (methods.empty()) throw Error("--methods: no method given");
@@ -168,7 +171,10 @@ void Run(const ValidateOptions& o) {
   if (!o.quiet) {
     for (const std::string& w : dataset.warnings) Warn(w);
   }
-  ValidationOptions options;
+  validate::ValidationOptions options;
+  options.build = [](const std::string& method, const Dataset& training) {
+    return fit::BuildModel(method, training);
+  };
   options.methods = ParseMethods(o.methods);
   options.angles_deg = ParseNumberList(o.angles, "--angles");
   for (double a : options.angles_deg) {
@@ -180,7 +186,7 @@ void Run(const ValidateOptions& o) {
   PrepareOutput(o.out);
 
   const auto start = std::chrono::steady_clock::now();
-  ProgressFunction progress;
+  ProgressCallback progress;
   if (!o.quiet) {
     progress = [start](const std::string& message) {
       const double s =
@@ -189,7 +195,7 @@ void Run(const ValidateOptions& o) {
     };
   }
   const ValidationReport report =
-      ComputeValidation(dataset, splits, colorimeter, options, progress);
+      validate::ComputeValidation(dataset, splits, colorimeter, options, progress);
   // Both files are rendered before either is written; each is written atomically.
   const nlohmann::json json = ValidationJson(report);
   const std::string json_text = json.dump(1) + "\n";

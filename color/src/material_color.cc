@@ -103,7 +103,7 @@ double DeltaE00Sigma(const Colorimeter& colorimeter, const AlloyModel& model,
       LabFromXYZ(MaterialXYZ(colorimeter, model.Index(x_atomic, grid), angle_deg),
                  colorimeter.White());
   double sum = 0;
-  const auto eps_draws = model.PermittivityDraws(x_atomic, grid, draws, 20261122u);
+  const auto eps_draws = model.PermittivityDraws(x_atomic, grid, draws);
   for (const auto& eps : eps_draws) {
     std::vector<std::complex<double>> index(eps.size());
     for (size_t i = 0; i < eps.size(); ++i) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "alloycolor/core/error.h"
@@ -24,6 +25,69 @@ std::vector<std::complex<double>> AlloyModel::Index(
 std::vector<std::vector<std::complex<double>>> AlloyModel::PermittivityDraws(
     double, const std::vector<double>&, int, std::uint32_t) const {
   return {};
+}
+
+bool AlloyModel::DrudeAt(double x_atomic, double lambda_nm, DrudePoint* out) const {
+  if (!(lambda_nm >= lambda_min_nm_ - 1e-9 && lambda_nm <= lambda_max_nm_ + 1e-9)) return false;
+  const std::complex<double> eps = Permittivity(x_atomic, {std::clamp(lambda_nm, lambda_min_nm_, lambda_max_nm_)})[0];
+  if (!DrudeInvertible(eps.real(), eps.imag())) return false;
+  *out = InvertDrude(OmegaEvFromLambdaNm(lambda_nm), eps.real(), eps.imag());
+  return true;
+}
+
+ParameterTable AlloyModel::Parameters(const std::vector<double>& xs) const {
+  std::vector<double> lambda = {450, 550, 650};
+  if (!(lambda_min_nm_ <= 450 && lambda_max_nm_ >= 650)) {
+    lambda.clear();
+    for (double f : {0.1, 0.5, 0.9}) {
+      lambda.push_back(std::round(lambda_min_nm_ + (lambda_max_nm_ - lambda_min_nm_) * f));
+    }
+  }
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  constexpr int kDraws = 256;
+  ParameterTable table;
+  table.notes = {"tau = hbar / gamma and m*/m_e = e^2 hbar^2 N_e / (eps0 m_e (hbar wp)^2) from "
+                 "the pointwise Drude inversion of the " + method() + " model (eq. 11, 12)" +
+                 (HasUncertainty() ? "; sigma from " + std::to_string(kDraws) +
+                                         " draws of the fit's covariance"
+                                   : "")};
+  table.columns = {"N_e_m^-3"};
+  for (double l : lambda) {
+    std::ostringstream tau, mass;
+    tau << "tau_fs@" << l << "nm";
+    mass << "m*/m_e@" << l << "nm";
+    table.columns.push_back(tau.str());
+    table.columns.push_back(mass.str());
+  }
+  for (double x : xs) {
+    const double n_e = FreeElectronDensityM3(x, system_);
+    const auto draws = PermittivityDraws(x, lambda, kDraws);
+    std::vector<ParameterTable::Quantity> row = {{n_e, 0.0}};
+    for (size_t i = 0; i < lambda.size(); ++i) {
+      DrudePoint p;
+      if (!DrudeAt(x, lambda[i], &p)) {
+        row.push_back({kNaN, kNaN});
+        row.push_back({kNaN, kNaN});
+        continue;
+      }
+      const double tau = TauFsFromGammaEv(p.gamma_ev);
+      const double mass = EffectiveMassRatio(n_e, p.wp2_ev2);
+      double s_tau = 0, s_mass = 0;
+      int used = 0;
+      for (const auto& d : draws) {
+        if (!DrudeInvertible(d[i].real(), d[i].imag())) continue;
+        const DrudePoint q = InvertDrude(OmegaEvFromLambdaNm(lambda[i]), d[i].real(), d[i].imag());
+        s_tau += std::pow(TauFsFromGammaEv(q.gamma_ev) - tau, 2);
+        s_mass += std::pow(EffectiveMassRatio(n_e, q.wp2_ev2) - mass, 2);
+        ++used;
+      }
+      row.push_back({tau, used ? std::sqrt(s_tau / used) : 0.0});
+      row.push_back({mass, used ? std::sqrt(s_mass / used) : 0.0});
+    }
+    table.x_atomic.push_back(x);
+    table.rows.push_back(std::move(row));
+  }
+  return table;
 }
 
 void AlloyModel::CheckInRange(double x_atomic) const {

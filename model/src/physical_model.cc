@@ -350,6 +350,58 @@ std::vector<PhysicalParameterValue> PhysicalModel::ParameterValues(double x_atom
   return out;
 }
 
+ParameterTable PhysicalModel::Parameters(const std::vector<double>& xs) const {
+  ParameterTable table;
+  const std::string terms = layout_.interband().empty()
+                                ? "drude only"
+                                : "drude + " + InterbandTermsText(layout_.interband());
+  std::ostringstream title;
+  title << "physical model: " << terms << ", degree " << layout_.degree() << ", fitted "
+        << lambda_min_nm() << "-" << lambda_max_nm() << " nm";
+  table.notes.push_back(title.str());
+  table.notes.push_back(
+      "tau = hbar / gamma; m*/m_e = e^2 hbar^2 N_e / (eps0 m_e (hbar wp)^2); " +
+      std::string(HasUncertainty() ? "sigma from the fit's covariance" : "no covariance"));
+  table.columns = {"wp_eV", "gamma_eV", "tau_fs", "N_e_m^-3", "m*/m_e", "eps_inf"};
+  for (int t = 1; t < layout_.num_terms(); ++t) {
+    const std::string p = "t" + std::to_string(t) + ":";
+    const bool gap = layout_.term_kind(t) == TermKind::kRiouxGap;
+    table.notes.push_back(p + " " + TermKindName(layout_.term_kind(t)) +
+                          (gap ? " (E0 absorption onset, Eg gap, G width)" : " (E0 centre, G width)"));
+    table.columns.push_back(p + "E0_eV");
+    table.columns.push_back(p + "E0_nm");
+    if (gap) table.columns.push_back(p + "Eg_eV");
+    table.columns.push_back(p + "G_eV");
+  }
+  for (double x : xs) {
+    const std::vector<PhysicalParameterValue> values = ParameterValues(x);
+    auto get = [&](int term, const char* name) {
+      const PhysicalParameterValue& v = values[layout_.Find(term, name)];
+      return ParameterTable::Quantity{v.value, v.sigma};
+    };
+    const auto wp = get(0, "wp_eV"), gamma = get(0, "gamma_eV");
+    const double n_e = FreeElectronDensityM3(x, system());
+    const double mass = EffectiveMassRatio(n_e, wp.value * wp.value);
+    std::vector<ParameterTable::Quantity> row = {
+        wp,
+        gamma,
+        {TauFsFromGammaEv(gamma.value), kHbarEvFs * gamma.sigma / (gamma.value * gamma.value)},
+        {n_e, 0.0},
+        {mass, 2.0 * mass * wp.sigma / wp.value},
+        get(0, "eps_inf")};
+    for (int t = 1; t < layout_.num_terms(); ++t) {
+      const auto e0 = get(t, "E0_eV");
+      row.push_back(e0);
+      row.push_back({LambdaNmFromOmegaEv(e0.value), kHcEvNm * e0.sigma / (e0.value * e0.value)});
+      if (layout_.term_kind(t) == TermKind::kRiouxGap) row.push_back(get(t, "Eg_eV"));
+      row.push_back(get(t, "G_eV"));
+    }
+    table.x_atomic.push_back(x);
+    table.rows.push_back(std::move(row));
+  }
+  return table;
+}
+
 nlohmann::json PhysicalModel::ParametersJson() const {
   const int nb = layout_.basis_size();
   const int nc = layout_.num_coefficients();

@@ -176,7 +176,7 @@ bool SampleModel::PaperTauMass(double x, double lambda_nm, TauMass* out) const {
     const DrudePoint p = InvertDrude(omega, e.real(), e.imag());
     xs.push_back(node.x);
     taus.push_back(TauFsFromGammaEv(p.gamma_ev));
-    masses.push_back(kPlasmaEv2M3 * FreeElectronDensityM3(node.x, system()) / p.wp2_ev2);
+    masses.push_back(EffectiveMassRatio(FreeElectronDensityM3(node.x, system()), p.wp2_ev2));
   }
   if (xs.empty()) return false;
   if (xs.size() == 1) {
@@ -206,9 +206,20 @@ std::complex<double> SampleModel::PaperAt(double x, double lambda_nm) const {
   TauMass tm;
   if (!PaperTauMass(x, lambda_nm, &tm)) return EpsLinearAt(x, lambda_nm);
   const double omega = OmegaEvFromLambdaNm(lambda_nm);
-  const double wp2 = kPlasmaEv2M3 * FreeElectronDensityM3(x, system()) / tm.mass_ratio;
+  const double wp2 = EffectiveMassRatio(FreeElectronDensityM3(x, system()), tm.mass_ratio);
   const Complex<double> e = DrudePermittivity(omega, wp2, GammaEvFromTauFs(tm.tau_fs));
   return {e.re, e.im};
+}
+
+bool SampleModel::DrudeAt(double x_atomic, double lambda_nm, DrudePoint* out) const {
+  if (kind_ != Kind::kPaper) return AlloyModel::DrudeAt(x_atomic, lambda_nm, out);
+  if (!(lambda_nm >= lambda_min_nm() - 1e-9 && lambda_nm <= lambda_max_nm() + 1e-9)) return false;
+  TauMass tm;
+  if (!PaperTauMass(x_atomic, lambda_nm, &tm)) return false;
+  // m*/m_e = kPlasmaEv2M3 N_e / wp^2 is its own inverse in (m*/m_e, wp^2).
+  *out = {GammaEvFromTauFs(tm.tau_fs),
+          EffectiveMassRatio(FreeElectronDensityM3(x_atomic, system()), tm.mass_ratio)};
+  return true;
 }
 
 nlohmann::json SampleModel::ParametersJson() const {

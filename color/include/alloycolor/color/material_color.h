@@ -60,7 +60,7 @@ nlohmann::json ColorJson(const ColorResult& color);
 // between the central colour and `draws` colours from PermittivityDraws (seeded, so
 // repeatable). Returns a negative value for a model without uncertainty.
 double DeltaE00Sigma(const Colorimeter& colorimeter, const AlloyModel& model,
-                     double x_atomic, double angle_deg, int draws = 64);
+                     double x_atomic, double angle_deg, int draws = kUncertaintyDraws);
 
 // "#rrggbb".
 std::string HexColor(const std::array<std::uint8_t, 3>& srgb8);

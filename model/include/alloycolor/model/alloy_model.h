@@ -24,6 +24,7 @@
 
 #include "alloycolor/core/composition.h"
 #include "alloycolor/core/dataset.h"
+#include "alloycolor/model/optics.h"
 
 namespace alloycolor {
 
@@ -44,6 +45,26 @@ struct FitSummary {
   nlohmann::json details = nlohmann::json::object();
 
   bool present() const { return !solver.empty(); }
+};
+
+// Uncertainty is propagated by drawing parameters from the fit's covariance: this many
+// draws, from this seed, wherever the program reports a sigma, so reports repeat exactly.
+inline constexpr int kUncertaintyDraws = 64;
+inline constexpr std::uint32_t kUncertaintySeed = 20261122u;
+
+// A model's physical parameters against composition (the `params` read-out): one column a
+// quantity, named with its unit ("tau_fs@550nm", "wp_eV", "t1:E0_nm"), one row a
+// composition; sigma is 0 where the model has no uncertainty, NaN where the quantity is
+// undefined (value NaN too).
+struct ParameterTable {
+  struct Quantity {
+    double value;
+    double sigma;
+  };
+  std::vector<std::string> notes;    // lines explaining the columns
+  std::vector<std::string> columns;  // besides x
+  std::vector<double> x_atomic;
+  std::vector<std::vector<Quantity>> rows;  // rows[i][column]
 };
 
 // What a model keeps of each training sample (not its data, unless the method needs it).
@@ -69,12 +90,24 @@ class AlloyModel {
   std::vector<std::complex<double>> Index(double x_atomic,
                                           const std::vector<double>& lambda_nm) const;
 
+  // Drude parameters of the model at (x, lambda): gamma = hbar / tau and wp^2, the
+  // pointwise inversion (eq. 11, 12) of Permittivity; false where it is undefined
+  // (eps1 >= 1 or eps2 <= 0) or lambda lies outside the model's range. A method that
+  // interpolates Drude parameters itself (the paper's) gives its own.
+  virtual bool DrudeAt(double x_atomic, double lambda_nm, DrudePoint* out) const;
+
   // Whether PermittivityDraws gives anything: draws of eps from the parameters'
   // covariance, for propagating uncertainty to reflectance and colour.
   virtual bool HasUncertainty() const { return false; }
   virtual std::vector<std::vector<std::complex<double>>> PermittivityDraws(
-      double x_atomic, const std::vector<double>& lambda_nm, int count,
-      std::uint32_t seed) const;
+      double x_atomic, const std::vector<double>& lambda_nm, int count = kUncertaintyDraws,
+      std::uint32_t seed = kUncertaintySeed) const;
+
+  // The model's physical parameters at each composition. Every model gives the free-carrier
+  // density N_e(x) and the Drude tau and m*/m_e (DrudeAt) at 450, 550 and 650 nm (three
+  // wavelengths across the range for infrared models), sigma from 256 draws; a model with
+  // fitted physical parameters gives those instead.
+  virtual ParameterTable Parameters(const std::vector<double>& x_atomic) const;
 
   // The wavelengths the model is defined on, where it has its own grid (nodes between
   // which it interpolates); empty for a model defined at every wavelength of its range.

@@ -22,6 +22,7 @@
 #include <cmath>
 
 #include "alloycolor/core/complex.h"
+#include "alloycolor/core/units.h"
 
 namespace alloycolor {
 
@@ -103,6 +104,12 @@ inline bool DrudeInvertible(double eps1, double eps2) {
 inline DrudePoint InvertDrude(double omega_ev, double eps1, double eps2) {
   const double gamma = omega_ev * eps2 / (1.0 - eps1);
   return {gamma, (1.0 - eps1) * (omega_ev * omega_ev + gamma * gamma)};
+}
+
+// m*/m_e from the free-electron density and the plasma energy: (hbar wp)^2 =
+// kPlasmaEv2M3 N_e / (m*/m_e) (eq. 7's wp^2 = N_e e^2 / (eps0 m*)).
+inline double EffectiveMassRatio(double n_e_m3, double wp2_ev2) {
+  return kPlasmaEv2M3 * n_e_m3 / wp2_ev2;
 }
 
 }  // namespace alloycolor

@@ -286,8 +286,8 @@ class PhysicalModel : public AlloyModel {
       double x_atomic, const std::vector<double>& lambda_nm) const override;
   bool HasUncertainty() const override { return !covariance_.empty(); }
   std::vector<std::vector<std::complex<double>>> PermittivityDraws(
-      double x_atomic, const std::vector<double>& lambda_nm, int count,
-      std::uint32_t seed) const override;
+      double x_atomic, const std::vector<double>& lambda_nm, int count = kUncertaintyDraws,
+      std::uint32_t seed = kUncertaintySeed) const override;
 
   const PhysicalLayout& layout() const { return layout_; }
   const std::vector<double>& coeffs() const { return coeffs_; }
@@ -296,6 +296,9 @@ class PhysicalModel : public AlloyModel {
   double BasisArgument(double x_atomic) const;
   // Every parameter's value at x, with one-sigma from the coefficients' covariance.
   std::vector<PhysicalParameterValue> ParameterValues(double x_atomic) const;
+  // wp, gamma, tau, N_e, m*/m_e, eps_inf and each interband term's centre (eV and nm), gap
+  // and width, with one-sigma from the covariance (first-order propagation).
+  ParameterTable Parameters(const std::vector<double>& x_atomic) const override;
   // Adds fit diagnostics to warnings().
   void AddWarnings(const std::vector<std::string>& warnings);
 

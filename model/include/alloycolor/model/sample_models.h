@@ -38,6 +38,10 @@ class SampleModel : public AlloyModel {
   std::vector<std::complex<double>> Permittivity(
       double x_atomic, const std::vector<double>& lambda_nm) const override;
 
+  // "paper": the interpolated tau and m* turned back into gamma and wp^2 at x; otherwise
+  // the inversion of eps.
+  bool DrudeAt(double x_atomic, double lambda_nm, DrudePoint* out) const override;
+
   // Drude parameters of the paper method at (x, lambda): false where undefined.
   struct TauMass {
     double tau_fs;

@@ -60,8 +60,8 @@ class SmoothModel : public AlloyModel {
       double x_atomic, const std::vector<double>& lambda_nm) const override;
   bool HasUncertainty() const override { return !covariance_.empty(); }
   std::vector<std::vector<std::complex<double>>> PermittivityDraws(
-      double x_atomic, const std::vector<double>& lambda_nm, int count,
-      std::uint32_t seed) const override;
+      double x_atomic, const std::vector<double>& lambda_nm, int count = kUncertaintyDraws,
+      std::uint32_t seed = kUncertaintySeed) const override;
 
   std::vector<double> native_grid_nm() const override { return grid_nm_; }
   std::vector<double> FittedCoefficients() const override;

@@ -1,0 +1,542 @@
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "alloycolor/color/material_color.h"
+#include "alloycolor/core/markup.h"
+#include "report.h"
+#include "report_metrics.h"
+
+namespace alloycolor::app {
+
+namespace {
+
+const char* const kPalette[] = {"#d62728", "#1f77b4", "#2ca02c", "#9467bd",
+                                "#ff7f0e", "#8c564b", "#e377c2", "#17becf"};
+
+std::string MethodColour(const ValidationReport& report, const std::string& method) {
+  const auto it = std::find(report.methods.begin(), report.methods.end(), method);
+  const size_t i = it - report.methods.begin();
+  return kPalette[i % (sizeof kPalette / sizeof kPalette[0])];
+}
+
+struct PlotSeries {
+  std::string label, colour;
+  std::vector<double> x, y;
+  bool line = true;
+  bool markers = false;
+  bool hollow = false;
+  double width = 1.6;
+  std::string dash;
+};
+
+struct PlotSpec {
+  std::string id, title, x_label, y_label;
+  int width = 370, height = 250;
+  std::vector<PlotSeries> series;
+};
+
+// About `count` round tick values (1, 2, 5 times a power of ten) spanning [lo, hi].
+std::vector<double> NiceTicks(double lo, double hi, int count) {
+  const double raw = (hi - lo) / std::max(count, 1);
+  const double mag = std::pow(10.0, std::floor(std::log10(raw)));
+  double step = mag;
+  for (double f : {1.0, 2.0, 5.0, 10.0}) {
+    step = f * mag;
+    if (step >= raw) break;
+  }
+  std::vector<double> ticks;
+  for (double t = std::ceil(lo / step - 1e-9) * step; t <= hi + step * 1e-9; t += step) {
+    ticks.push_back(std::abs(t) < step * 1e-9 ? 0.0 : t);
+  }
+  return ticks;
+}
+
+std::string SvgPlot(const PlotSpec& spec) {
+  const double left = 58, right = 20, top = 26, bottom = 40;
+  const double pw = spec.width - left - right, ph = spec.height - top - bottom;
+  double x_lo = 1e300, x_hi = -1e300, y_lo = 1e300, y_hi = -1e300;
+  for (const PlotSeries& s : spec.series) {
+    for (size_t i = 0; i < s.x.size(); ++i) {
+      if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
+      x_lo = std::min(x_lo, s.x[i]);
+      x_hi = std::max(x_hi, s.x[i]);
+      y_lo = std::min(y_lo, s.y[i]);
+      y_hi = std::max(y_hi, s.y[i]);
+    }
+  }
+  std::ostringstream svg;
+  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" class=\"plot\" width=\"" << spec.width
+      << "\" height=\"" << spec.height << "\" viewBox=\"0 0 " << spec.width << " " << spec.height
+      << "\" role=\"img\" aria-label=\"" << EscapeXml(spec.title) << "\">";
+  svg << "<rect width=\"100%\" height=\"100%\" fill=\"#fff\"/>";
+  svg << "<text x=\"" << left + pw / 2 << "\" y=\"16\" text-anchor=\"middle\" "
+      << "class=\"pt\">" << EscapeXml(spec.title) << "</text>";
+  if (!(x_lo <= x_hi) || !(y_lo <= y_hi)) {
+    svg << "<text x=\"" << left + pw / 2 << "\" y=\"" << top + ph / 2
+        << "\" text-anchor=\"middle\" class=\"pl\">no data</text></svg>";
+    return svg.str();
+  }
+  if (x_hi - x_lo < 1e-12) {
+    x_lo -= 0.5;
+    x_hi += 0.5;
+  }
+  const double pad =
+      y_hi - y_lo < 1e-12 ? std::max(std::abs(y_hi) * 0.05, 1e-3) : (y_hi - y_lo) * 0.06;
+  y_lo -= pad;
+  y_hi += pad;
+  const auto px = [&](double x) { return left + (x - x_lo) / (x_hi - x_lo) * pw; };
+  const auto py = [&](double y) { return top + (y_hi - y) / (y_hi - y_lo) * ph; };
+  svg << "<defs><clipPath id=\"" << spec.id << "\"><rect x=\"" << left << "\" y=\"" << top
+      << "\" width=\"" << pw << "\" height=\"" << ph << "\"/></clipPath></defs>";
+  svg << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << pw << "\" height=\"" << ph
+      << "\" fill=\"none\" stroke=\"#999\"/>";
+  char buf[64];
+  for (double t : NiceTicks(x_lo, x_hi, 5)) {
+    std::snprintf(buf, sizeof buf, "%.1f", px(t));
+    svg << "<line x1=\"" << buf << "\" x2=\"" << buf << "\" y1=\"" << top << "\" y2=\"" << top + ph
+        << "\" class=\"grid\"/><text x=\"" << buf << "\" y=\"" << top + ph + 14
+        << "\" text-anchor=\"middle\" class=\"pl\">" << Num(t, "%.6g") << "</text>";
+  }
+  for (double t : NiceTicks(y_lo, y_hi, 5)) {
+    std::snprintf(buf, sizeof buf, "%.1f", py(t));
+    svg << "<line x1=\"" << left << "\" x2=\"" << left + pw << "\" y1=\"" << buf << "\" y2=\""
+        << buf << "\" class=\"grid\"/><text x=\"" << left - 4 << "\" y=\"" << buf
+        << "\" dy=\"3\" text-anchor=\"end\" class=\"pl\">" << Num(t, "%.4g") << "</text>";
+  }
+  svg << "<text x=\"" << left + pw / 2 << "\" y=\"" << spec.height - 6
+      << "\" text-anchor=\"middle\" class=\"pl\">" << EscapeXml(spec.x_label) << "</text>";
+  svg << "<text transform=\"translate(12," << top + ph / 2 << ") rotate(-90)\" "
+      << "text-anchor=\"middle\" class=\"pl\">" << EscapeXml(spec.y_label) << "</text>";
+  svg << "<g clip-path=\"url(#" << spec.id << ")\">";
+  for (const PlotSeries& s : spec.series) {
+    if (s.line) {
+      std::string points;
+      const auto flush = [&]() {
+        if (points.find(' ') != std::string::npos) {
+          svg << "<polyline fill=\"none\" stroke=\"" << s.colour << "\" stroke-width=\"" << s.width
+              << "\"" << (s.dash.empty() ? "" : " stroke-dasharray=\"" + s.dash + "\"")
+              << " points=\"" << points << "\"><title>" << EscapeXml(s.label) << "</title></polyline>";
+        }
+        points.clear();
+      };
+      for (size_t i = 0; i < s.x.size(); ++i) {
+        if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) {
+          flush();
+          continue;
+        }
+        std::snprintf(buf, sizeof buf, "%s%.1f,%.1f", points.empty() ? "" : " ", px(s.x[i]),
+                      py(s.y[i]));
+        points += buf;
+      }
+      flush();
+    }
+    if (s.markers) {
+      for (size_t i = 0; i < s.x.size(); ++i) {
+        if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
+        std::snprintf(buf, sizeof buf, "cx=\"%.1f\" cy=\"%.1f\"", px(s.x[i]), py(s.y[i]));
+        svg << "<circle " << buf << " r=\"3.5\" fill=\"" << (s.hollow ? "#fff" : s.colour)
+            << "\" stroke=\"" << s.colour << "\" stroke-width=\"1.5\"><title>" << EscapeXml(s.label)
+            << ": " << Num(s.x[i], "%.4g") << ", " << Num(s.y[i], "%.4g") << "</title></circle>";
+      }
+    }
+  }
+  svg << "</g></svg>";
+  return svg.str();
+}
+
+std::string Swatch(const std::array<std::uint8_t, 3>& srgb8, const std::string& caption) {
+  return "<div class=\"sw\"><div class=\"chip\" style=\"background:" + color::HexColor(srgb8) +
+         "\"></div><div class=\"cap\">" + caption + "</div></div>";
+}
+
+std::string Legend(const ValidationReport& report, bool drude) {
+  std::string html = "<div class=\"legend\"><span><i style=\"background:#000\"></i>measured";
+  html += drude ? " (training: filled; held out: open)" : "";
+  html += "</span>";
+  for (const std::string& m : report.methods) {
+    html += "<span><i style=\"background:" + MethodColour(report, m) + "\"></i>" + EscapeXml(m) +
+            "</span>";
+  }
+  return html + "</div>";
+}
+
+const char kStyle[] = R"css(
+body{font-family:system-ui,-apple-system,"Segoe UI",Roboto,Helvetica,Arial,sans-serif;
+ margin:24px;color:#222;max-width:1180px;line-height:1.4}
+h1{font-size:24px;margin:0 0 8px} h2{font-size:19px;margin:28px 0 8px;border-bottom:1px solid #ccc}
+h3{font-size:16px;margin:22px 0 6px} h4{font-size:15px;margin:16px 0 6px}
+table{border-collapse:collapse;margin:6px 0 14px;font-size:13px}
+th,td{border:1px solid #ccc;padding:3px 8px;text-align:right} th{background:#f2f2f2}
+td.l,th.l{text-align:left} td.best{background:#dff0d8;font-weight:bold}
+td.best::after{content:" \2605";color:#3c763d}
+.meta{color:#555;font-size:13px} .note{color:#8a6d3b;background:#fcf8e3;padding:6px 10px;
+ border:1px solid #faebcc;font-size:13px} .bad{color:#a94442}
+.swrow{display:flex;flex-wrap:wrap;gap:10px;align-items:flex-start;margin:4px 0 10px}
+.swlabel{width:70px;font-size:13px;padding-top:22px}
+.sw{width:104px;text-align:center;font-size:12px}
+.chip{width:96px;height:64px;margin:0 auto 3px;border:1px solid #888;border-radius:4px}
+.plots{display:flex;flex-wrap:wrap;gap:8px}
+.plot text{font-size:11px;fill:#333} .plot .pt{font-size:12px;font-weight:bold}
+.plot line.grid{stroke:#eee}
+.legend{font-size:13px;margin:4px 0} .legend span{margin-right:16px;white-space:nowrap}
+.legend i{display:inline-block;width:14px;height:4px;margin:0 5px 3px 0;vertical-align:middle}
+)css";
+
+std::string MetricCell(double v, const char* format, bool best) {
+  if (!std::isfinite(v)) return "<td>&ndash;</td>";
+  return std::string("<td") + (best ? " class=\"best\"" : "") + ">" + Num(v, format) + "</td>";
+}
+
+bool WeightManifest(const ValidationReport& report) {
+  return report.composition == "weight_fraction_a";
+}
+
+std::string XLabel(const ValidationReport& report, const HoldoutResult& h) {
+  return "x = " + Num(h.x_atomic, "%.4g") + " (" + Num(100 * h.x_atomic, "%.4g") + " at%" +
+         (WeightManifest(report) ? ", " + Num(100 * h.x_given, "%.4g") + " wt%" : "") + " " +
+         report.element_a + ")";
+}
+
+// The held-out composition in a table row: x, and the manifest's weight fraction if given.
+std::string RowLabel(const ValidationReport& report, const HoldoutResult& h) {
+  return Num(h.x_atomic, "%.4g") +
+         (WeightManifest(report) ? " <small>(" + Num(h.x_given, "%.4g") + " wt)</small>" : "");
+}
+
+void WriteVerdict(const ValidationReport& report, std::ostringstream& html) {
+  html << "<h2>Verdict</h2><ul>";
+  for (const Metric& metric : Metrics(report)) {
+    std::vector<std::pair<double, std::string>> ranked;
+    std::map<std::string, MetricSummary> sums;
+    for (const std::string& m : report.methods) {
+      sums[m] = Summarise(report, m, metric);
+      if (sums[m].count > 0) ranked.push_back({sums[m].mean, m});
+    }
+    if (ranked.empty()) continue;
+    std::sort(ranked.begin(), ranked.end());
+    html << "<li><b>" << metric.label << "</b>: lowest mean <b>" << EscapeXml(ranked[0].second)
+         << "</b>";
+    for (size_t i = 0; i < ranked.size(); ++i) {
+      const MetricSummary& s = sums[ranked[i].second];
+      html << (i == 0 ? " (" : "; ") << (i == 0 ? "" : EscapeXml(ranked[i].second) + " ") << "mean "
+           << Num(s.mean, metric.format) << ", max " << Num(s.max, metric.format) << ", best on "
+           << s.wins << " of " << s.count;
+    }
+    html << ")</li>";
+  }
+  html << "</ul>";
+}
+
+void WriteSummaryTables(const ValidationReport& report, std::ostringstream& html) {
+  html << "<h2>Summary</h2><p class=\"meta\">Error of each method on each held-out "
+          "composition; the best method in each row is marked &#9733;. Lower is better.</p>";
+  html << "<div class=\"plots\">";
+  for (const Metric& metric : Metrics(report)) {
+    html << "<table class=\"summary\"><caption>" << metric.label
+         << "</caption><tr><th class=\"l\">held out</th>";
+    for (const std::string& m : report.methods) html << "<th>" << EscapeXml(m) << "</th>";
+    html << "</tr>";
+    for (const HoldoutResult& h : report.holdouts) {
+      const std::set<std::string> best = Best(report, h, metric);
+      html << "<tr><td class=\"l\">" << RowLabel(report, h) << "</td>";
+      for (const std::string& m : report.methods) {
+        html << MetricCell(ValueOf(h, m, metric), metric.format, best.count(m) > 0);
+      }
+      html << "</tr>";
+    }
+    html << "<tr><th class=\"l\">mean</th>";
+    for (const std::string& m : report.methods) {
+      html << "<th>" << Num(Summarise(report, m, metric).mean, metric.format) << "</th>";
+    }
+    html << "</tr><tr><th class=\"l\">wins</th>";
+    for (const std::string& m : report.methods) {
+      html << "<th>" << Summarise(report, m, metric).wins << "</th>";
+    }
+    html << "</tr></table>";
+  }
+  html << "</div>";
+}
+
+void WriteHonesty(const ValidationReport& report, std::ostringstream& html) {
+  std::ostringstream rows;
+  for (const std::string& m : report.methods) {
+    for (size_t a = 0; a < report.angles_deg.size(); ++a) {
+      const validate::SigmaCoverage s = validate::Coverage(report, m, static_cast<int>(a));
+      if (s.count == 0) continue;
+      const double frac1 = double(s.within_1) / s.count;
+      std::string verdict;
+      if (s.median_ratio > 2) {
+        verdict = "<span class=\"bad\">too small: errors are typically " +
+                  Num(s.median_ratio, "%.1f") + "&times; the predicted sigma</span>";
+      } else if (s.median_ratio < 0.3) {
+        verdict = "too large (over-cautious): errors are typically " + Num(s.median_ratio, "%.2g") +
+                  "&times; the predicted sigma";
+      } else {
+        verdict = "about right";
+      }
+      rows << "<tr><td class=\"l\">" << EscapeXml(m) << "</td><td>" << Num(report.angles_deg[a])
+           << "&deg;</td><td>" << s.within_1 << " of " << s.count << " ("
+           << Num(100 * frac1, "%.0f") << "%)</td><td>" << s.within_2 << " of " << s.count
+           << "</td><td>" << Num(s.median_ratio, "%.2f") << "</td><td class=\"l\">" << verdict
+           << "</td></tr>";
+    }
+  }
+  html << "<h2>Are the error bars honest?</h2>";
+  if (rows.str().empty()) {
+    html << "<p class=\"meta\">No method in this report carries an uncertainty (or no colour "
+            "could be computed).</p>";
+    return;
+  }
+  html << "<p class=\"meta\">For methods with an uncertainty, the observed &Delta;E<sub>00</sub> "
+          "against the model's own one-sigma &Delta;E<sub>00</sub> (RMS over draws from the "
+          "fit covariance). Honest error bars hold about 68% of the errors within one sigma "
+          "and 95% within two.</p>"
+       << "<table><tr><th class=\"l\">method</th><th>angle</th><th>&Delta;E &le; "
+          "1&sigma;</th><th>&Delta;E &le; 2&sigma;</th><th>median &Delta;E/&sigma;</th><th "
+          "class=\"l\">verdict</th></tr>"
+       << rows.str() << "</table>";
+}
+
+void WriteDrude(const ValidationReport& report, const SplitResult& split, int split_index,
+                std::ostringstream& html) {
+  if (split.drude.empty()) return;
+  html << "<h4>Drude parameters against composition</h4><p class=\"meta\">&tau; = "
+          "&hbar;/&gamma; and m*/m<sub>e</sub> = e&sup2;&hbar;&sup2;N<sub>e</sub>(x)/"
+          "(&epsilon;<sub>0</sub>m<sub>e</sub>&omega;<sub>p</sub>&sup2;) from each model "
+          "(paper: its interpolated inversion; others: eq. 11, 12 applied to the predicted "
+          "&epsilon;), and from the measured samples (dots; held out: open).</p>"
+       << Legend(report, true);
+  for (int quantity = 0; quantity < 2; ++quantity) {
+    html << "<div class=\"plots\">";
+    for (size_t c = 0; c < split.drude.size(); ++c) {
+      const DrudeCurve& curve = split.drude[c];
+      PlotSpec spec;
+      spec.id = "d" + std::to_string(split_index) + "_" + std::to_string(quantity) + "_" +
+                std::to_string(c);
+      spec.title = std::string(quantity == 0 ? "\u03c4" : "m*/m\u2091") + " at " +
+                   Num(curve.lambda_nm) + " nm";
+      spec.x_label = "x (atomic fraction " + report.element_a + ")";
+      spec.y_label = quantity == 0 ? "\u03c4 (fs)" : "m*/m\u2091";
+      for (const std::string& m : report.methods) {
+        const auto& values = quantity == 0 ? curve.tau_fs : curve.mass;
+        const auto it = values.find(m);
+        if (it == values.end()) continue;
+        PlotSeries s;
+        s.label = m;
+        s.colour = MethodColour(report, m);
+        s.x = curve.x;
+        s.y = it->second;
+        spec.series.push_back(s);
+      }
+      PlotSeries train;
+      train.label = "measured (training)";
+      train.colour = "#000";
+      train.line = false;
+      train.markers = true;
+      train.x = curve.train_x;
+      train.y = quantity == 0 ? curve.train_tau_fs : curve.train_mass;
+      spec.series.push_back(train);
+      PlotSeries held = train;
+      held.label = "measured (held out)";
+      held.hollow = true;
+      held.x = curve.holdout_x;
+      held.y = quantity == 0 ? curve.holdout_tau_fs : curve.holdout_mass;
+      spec.series.push_back(held);
+      html << SvgPlot(spec);
+    }
+    html << "</div>";
+  }
+}
+
+void WriteHoldout(const ValidationReport& report, const HoldoutResult& h, int index,
+                  std::ostringstream& html) {
+  html << "<h4>Held out: " << XLabel(report, h) << " &mdash; " << EscapeXml(h.file) << "</h4>";
+  // Swatches.
+  if (!h.srgb8.empty()) {
+    for (size_t a = 0; a < report.angles_deg.size(); ++a) {
+      html << "<div class=\"swrow\"><div class=\"swlabel\">" << Num(report.angles_deg[a])
+           << "&deg; incidence</div>"
+           << Swatch(h.srgb8[a], "<b>measured</b><br>" + color::HexColor(h.srgb8[a]));
+      for (const std::string& m : report.methods) {
+        const auto it = h.results.find(m);
+        if (it == h.results.end() || a >= it->second.srgb8.size()) continue;
+        const MethodResult& r = it->second;
+        std::string cap = "<b>" + EscapeXml(m) + "</b><br>" + color::HexColor(r.srgb8[a]) +
+                          "<br>&Delta;E " + Num(r.delta_e00[a], "%.2f");
+        if (a < r.delta_e00_sigma.size()) {
+          cap += " (&sigma; " + Num(r.delta_e00_sigma[a], "%.2f") + ")";
+        }
+        html << Swatch(r.srgb8[a], cap);
+      }
+      html << "</div>";
+    }
+  } else {
+    html << "<p class=\"note\">No colour: " << EscapeXml(h.colour_note)
+         << ". &Delta;E<sub>00</sub> is not available; n, k and reflectance are compared "
+            "over "
+         << EscapeXml(h.metric_range.empty() ? "the data's range" : h.metric_range) << ".</p>";
+  }
+  // Metrics of this composition.
+  html << "<table><tr><th class=\"l\">method</th>";
+  for (double angle : report.angles_deg) {
+    if (!h.srgb8.empty()) html << "<th>&Delta;E<sub>00</sub> " << Num(angle) << "&deg;</th>";
+  }
+  if (!h.srgb8.empty()) html << "<th>&sigma; (&Delta;E<sub>00</sub>)</th>";
+  html << "<th>R RMS</th><th>R max</th><th>max |&Delta;n|</th><th>max |&Delta;k|</th>"
+          "<th class=\"l\">notes</th></tr>";
+  for (const std::string& m : report.methods) {
+    html << "<tr><td class=\"l\">" << EscapeXml(m) << "</td>";
+    const auto it = h.results.find(m);
+    std::string note;
+    if (it == h.results.end()) {
+      const auto& errors = report.splits[h.split].errors;
+      const auto e = errors.find(m);
+      note = e != errors.end() ? e->second : "not evaluated";
+    }
+    const MethodResult* r = it == h.results.end() ? nullptr : &it->second;
+    const bool spectral = r && !r->lambda_nm.empty();
+    if (r && !r->error.empty()) note = r->error;
+    if (!h.srgb8.empty()) {
+      for (size_t a = 0; a < report.angles_deg.size(); ++a) {
+        html << MetricCell(r && a < r->delta_e00.size() ? r->delta_e00[a] : kNaN, "%.2f", false);
+      }
+      std::string sigmas;
+      for (size_t a = 0; r && a < r->delta_e00_sigma.size(); ++a) {
+        sigmas += (a ? " / " : "") + Num(r->delta_e00_sigma[a], "%.2f");
+      }
+      html << "<td>" << (sigmas.empty() ? "&ndash;" : sigmas) << "</td>";
+    }
+    html << MetricCell(spectral ? r->reflectance_rms : kNaN, "%.4f", false)
+         << MetricCell(spectral ? r->reflectance_max : kNaN, "%.4f", false)
+         << MetricCell(spectral ? r->n_max_abs : kNaN, "%.3f", false)
+         << MetricCell(spectral ? r->k_max_abs : kNaN, "%.3f", false) << "<td class=\"l\">"
+         << EscapeXml(note) << "</td></tr>";
+  }
+  html << "</table>";
+  if (h.lambda_nm.empty()) return;
+  // Spectra.
+  html << "<p class=\"meta\">Spectra over " << EscapeXml(h.metric_range)
+       << "; R at normal incidence.</p>" << Legend(report, false) << "<div class=\"plots\">";
+  const bool few = h.lambda_nm.size() <= 60;
+  for (int q = 0; q < 3; ++q) {
+    PlotSpec spec;
+    spec.id = "s" + std::to_string(index) + "_" + std::to_string(q);
+    spec.title = q == 0 ? "n" : q == 1 ? "k" : "R (normal incidence)";
+    spec.x_label = "wavelength (nm)";
+    spec.y_label = q == 0 ? "n" : q == 1 ? "k" : "R";
+    PlotSeries measured;
+    measured.label = "measured";
+    measured.colour = "#000";
+    measured.width = 2.6;
+    measured.markers = few;
+    measured.x = h.lambda_nm;
+    measured.y = q == 0 ? h.n : q == 1 ? h.k : h.reflectance;
+    spec.series.push_back(measured);
+    for (const std::string& m : report.methods) {
+      const auto it = h.results.find(m);
+      if (it == h.results.end() || it->second.lambda_nm.empty()) continue;
+      const MethodResult& r = it->second;
+      PlotSeries s;
+      s.label = m;
+      s.colour = MethodColour(report, m);
+      s.x = r.lambda_nm;
+      s.y = q == 0 ? r.n : q == 1 ? r.k : r.reflectance;
+      s.dash = "6 3";
+      spec.series.push_back(s);
+    }
+    html << SvgPlot(spec);
+  }
+  html << "</div>";
+}
+
+}  // namespace
+
+std::string ValidationHtml(const ValidationReport& report) {
+  std::ostringstream html;
+  const std::string title = "alloycolor validation: " + report.system;
+  html << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>"
+       << EscapeXml(title) << "</title><style>" << kStyle << "</style></head><body>\n";
+  html << "<h1>" << EscapeXml(title) << "</h1>";
+  html << "<p class=\"meta\">Data: " << EscapeXml(report.name) << " &mdash; <code>"
+       << EscapeXml(report.data) << "</code><br>Methods: ";
+  for (size_t i = 0; i < report.methods.size(); ++i) {
+    html << (i ? ", " : "") << EscapeXml(report.methods[i]);
+  }
+  html << ". "
+       << (report.mode == "loo" ? "Leave-one-out: each interior sample held out in "
+                                  "turn, every method refitted without it."
+                                : "Held out: the given compositions, every method "
+                                  "refitted without them.")
+       << "<br>Colour: illuminant " << EscapeXml(report.illuminant) << ", " << report.observer_deg
+       << "&deg; observer, incidence ";
+  for (size_t a = 0; a < report.angles_deg.size(); ++a) {
+    html << (a ? ", " : "") << Num(report.angles_deg[a]) << "&deg;";
+  }
+  html << ". Compositions x are atomic fractions of " << EscapeXml(report.element_a)
+       << (report.composition == "weight_fraction_a" ? " (the manifest gives weight fractions)"
+                                                     : "")
+       << ".<br>Generated by alloycolor " ALLOYCOLOR_VERSION ".</p>";
+
+  // What each metric covers.
+  html << "<h2>What is compared</h2><ul class=\"meta\">";
+  if (AnyColour(report)) {
+    html << "<li>&Delta;E<sub>00</sub> (CIEDE2000) between measured and predicted colour of "
+            "the polished metal, over "
+         << EscapeXml(ColourRangeText(report)) << ".</li>";
+  } else {
+    std::string why;
+    for (const HoldoutResult& h : report.holdouts) {
+      if (why.empty()) why = h.colour_note;
+    }
+    html << "<li class=\"note\">&Delta;E<sub>00</sub> is <b>not available</b>: " << EscapeXml(why)
+         << ". The data carry no colour; n, k and reflectance are compared over "
+            "the data's own wavelengths.</li>";
+  }
+  std::set<std::string> ranges;
+  for (const HoldoutResult& h : report.holdouts) {
+    if (!h.metric_range.empty()) ranges.insert(h.metric_range);
+  }
+  html << "<li>Reflectance RMS and maximum error (normal incidence), max |&Delta;n| and "
+          "max |&Delta;k| over: ";
+  size_t i = 0;
+  for (const std::string& r : ranges) html << (i++ ? "; " : "") << EscapeXml(r);
+  html << ".</li></ul>";
+  if (!report.dataset_warnings.empty()) {
+    html << "<details><summary class=\"meta\">Data set warnings (" << report.dataset_warnings.size()
+         << ")</summary><ul class=\"meta\">";
+    for (const std::string& w : report.dataset_warnings) html << "<li>" << EscapeXml(w) << "</li>";
+    html << "</ul></details>";
+  }
+
+  WriteVerdict(report, html);
+  WriteSummaryTables(report, html);
+  WriteHonesty(report, html);
+
+  html << "<h2>Held-out compositions</h2>";
+  int holdout_index = 0;
+  for (size_t s = 0; s < report.splits.size(); ++s) {
+    const SplitResult& split = report.splits[s];
+    html << "<h3>Trained on x = " << XList(split.train_x)
+         << "; held out x = " << XList(split.holdout_x) << "</h3>";
+    for (const auto& [method, error] : split.errors) {
+      html << "<p class=\"note\">" << EscapeXml(method) << " could not be built: " << EscapeXml(error)
+           << "</p>";
+    }
+    for (const auto& [method, warnings] : split.warnings) {
+      if (warnings.empty()) continue;
+      html << "<details><summary class=\"meta\">" << EscapeXml(method) << ": " << warnings.size()
+           << " warning(s)</summary><ul class=\"meta\">";
+      for (const std::string& w : warnings) html << "<li>" << EscapeXml(w) << "</li>";
+      html << "</ul></details>";
+    }
+    for (const HoldoutResult& h : report.holdouts) {
+      if (h.split == static_cast<int>(s)) WriteHoldout(report, h, holdout_index++, html);
+    }
+    WriteDrude(report, split, static_cast<int>(s), html);
+  }
+  html << "\n</body></html>\n";
+  return html.str();
+}
+
+}  // namespace alloycolor::app

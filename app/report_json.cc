@@ -1,0 +1,129 @@
+#include <cmath>
+
+#include "report.h"
+#include "report_metrics.h"
+
+namespace alloycolor::app {
+
+nlohmann::json ValidationJson(const ValidationReport& report) {
+  const bool colour = AnyColour(report);
+  nlohmann::json doc = {{"format", "alloycolor-validation"},
+                        {"version", 1},
+                        {"generator", "alloycolor " ALLOYCOLOR_VERSION},
+                        {"data", report.data},
+                        {"name", report.name},
+                        {"system", report.system},
+                        {"composition", "atomic_fraction_a"},
+                        {"manifest_composition", report.composition},
+                        {"mode", report.mode},
+                        {"methods", report.methods},
+                        {"angles_deg", report.angles_deg},
+                        {"illuminant", report.illuminant},
+                        {"observer", report.observer_deg}};
+  std::string no_colour;
+  for (const HoldoutResult& h : report.holdouts) {
+    if (no_colour.empty() && !h.colour_note.empty()) no_colour = h.colour_note;
+  }
+  doc["metric_ranges"] = {
+      {"delta_e00", colour ? nlohmann::json(ColourRangeText(report))
+                           : nlohmann::json("not available: " + no_colour)},
+      {"reflectance", "normal incidence; per held-out sample, see holdouts[].metric_range"},
+      {"n_k", "the same wavelengths as the reflectance"}};
+  doc["delta_e00_available"] = colour;
+  nlohmann::json splits = nlohmann::json::array();
+  for (const SplitResult& s : report.splits) {
+    nlohmann::json split = {{"train_x", s.train_x}, {"holdout_x", s.holdout_x}};
+    if (!s.errors.empty()) split["errors"] = s.errors;
+    split["warnings"] = s.warnings;
+    nlohmann::json drude = nlohmann::json::array();
+    for (const DrudeCurve& c : s.drude) {
+      nlohmann::json curve = {{"lambda_nm", c.lambda_nm}};
+      const auto nulls = [](const std::vector<double>& v) {
+        nlohmann::json a = nlohmann::json::array();
+        for (double x : v) a.push_back(OrNull(x));
+        return a;
+      };
+      curve["train"] = {
+          {"x", c.train_x}, {"tau_fs", nulls(c.train_tau_fs)}, {"mass_ratio", nulls(c.train_mass)}};
+      curve["holdout"] = {{"x", c.holdout_x},
+                          {"tau_fs", nulls(c.holdout_tau_fs)},
+                          {"mass_ratio", nulls(c.holdout_mass)}};
+      drude.push_back(curve);
+    }
+    split["drude_measured"] = drude;
+    splits.push_back(split);
+  }
+  doc["splits"] = splits;
+  nlohmann::json holdouts = nlohmann::json::array();
+  for (const HoldoutResult& h : report.holdouts) {
+    nlohmann::json item = {{"x", h.x_atomic},
+                           {"x_given", h.x_given},
+                           {"file", h.file},
+                           {"path", h.path},
+                           {"split", h.split},
+                           {"train_x", report.splits[h.split].train_x},
+                           {"metric_range", h.metric_range},
+                           {"measured",
+                            {{"srgb_hex", HexByAngle(report.angles_deg, h.srgb8)},
+                             {"Lab", LabByAngle(report.angles_deg, h.lab)}}}};
+    if (!h.colour_note.empty()) item["delta_e00_note"] = "not available: " + h.colour_note;
+    nlohmann::json results = nlohmann::json::object();
+    for (const std::string& method : report.methods) {
+      const auto it = h.results.find(method);
+      if (it == h.results.end()) {
+        const auto& errors = report.splits[h.split].errors;
+        const auto e = errors.find(method);
+        results[method] = {{"error", e != errors.end() ? e->second : "not evaluated"}};
+        continue;
+      }
+      const MethodResult& r = it->second;
+      if (r.lambda_nm.empty()) {
+        results[method] = {{"error", r.error}};
+        continue;
+      }
+      nlohmann::json m = {{"delta_e00", ByAngle(report.angles_deg, r.delta_e00)},
+                          {"reflectance_rms", r.reflectance_rms},
+                          {"reflectance_max", r.reflectance_max},
+                          {"n_max_abs", r.n_max_abs},
+                          {"k_max_abs", r.k_max_abs},
+                          {"delta_e00_sigma", ByAngle(report.angles_deg, r.delta_e00_sigma)},
+                          {"srgb_hex", HexByAngle(report.angles_deg, r.srgb8)},
+                          {"Lab", LabByAngle(report.angles_deg, r.lab)}};
+      if (!r.error.empty()) m["note"] = r.error;
+      results[method] = m;
+    }
+    item["results"] = results;
+    holdouts.push_back(item);
+  }
+  doc["holdouts"] = holdouts;
+  nlohmann::json summary = nlohmann::json::object();
+  for (const Metric& metric : Metrics(report)) {
+    nlohmann::json row = nlohmann::json::object();
+    for (const std::string& method : report.methods) {
+      const MetricSummary s = Summarise(report, method, metric);
+      row[method] = {
+          {"count", s.count}, {"mean", OrNull(s.mean)}, {"max", OrNull(s.max)}, {"wins", s.wins}};
+    }
+    summary[metric.key] = row;
+  }
+  doc["summary"] = summary;
+  nlohmann::json honesty = nlohmann::json::object();
+  for (const std::string& method : report.methods) {
+    for (size_t a = 0; a < report.angles_deg.size(); ++a) {
+      const validate::SigmaCoverage s = validate::Coverage(report, method, static_cast<int>(a));
+      if (s.count == 0) continue;
+      honesty[method][Num(report.angles_deg[a])] = {
+          {"count", s.count},
+          {"within_1_sigma", s.within_1},
+          {"within_2_sigma", s.within_2},
+          {"median_observed_over_sigma", OrNull(s.median_ratio)}};
+    }
+  }
+  doc["sigma_honesty"] = honesty;
+  doc["dataset_warnings"] = report.dataset_warnings;
+  return doc;
+}
+
+// ---------------------------------------------------------------------------------------
+
+}  // namespace alloycolor::app

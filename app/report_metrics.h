@@ -1,0 +1,61 @@
+// What the report writers share: the metrics as table columns, the winners of a row and the
+// summaries per method (app/report_json.cc, app/report_html.cc, app/chart.cc).
+#ifndef ALLOYCOLOR_APP_REPORT_METRICS_H_
+#define ALLOYCOLOR_APP_REPORT_METRICS_H_
+
+#include <array>
+#include <cstdint>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "report.h"
+
+namespace alloycolor::app {
+
+inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// printf-formatted number.
+std::string Num(double v, const char* format = "%g");
+
+// "0.1, 0.3" (4 significant digits).
+std::string XList(const std::vector<double>& xs);
+
+struct Metric {
+  std::string key;    // JSON summary key
+  std::string label;  // HTML
+  int angle = -1;     // index into angles_deg for delta_e00
+  const char* format;
+  double (*value)(const MethodResult&, int angle);
+};
+
+// Whether any method predicted a colour.
+bool AnyColour(const ValidationReport& report);
+// delta_e00 at each angle (when there is colour), then the spectral metrics.
+std::vector<Metric> Metrics(const ValidationReport& report);
+// A metric's value for one method and held-out sample; NaN where there is none.
+double ValueOf(const HoldoutResult& h, const std::string& method, const Metric& metric);
+// The methods with the lowest value in a row (ties within 1e-12 relative all win).
+std::set<std::string> Best(const ValidationReport& report, const HoldoutResult& h,
+                           const Metric& metric);
+
+struct MetricSummary {
+  int count = 0, wins = 0;
+  double mean = kNaN, max = kNaN;
+};
+MetricSummary Summarise(const ValidationReport& report, const std::string& method,
+                        const Metric& metric);
+
+nlohmann::json OrNull(double v);
+nlohmann::json ByAngle(const std::vector<double>& angles, const std::vector<double>& values);
+nlohmann::json HexByAngle(const std::vector<double>& angles,
+                          const std::vector<std::array<std::uint8_t, 3>>& srgb8);
+nlohmann::json LabByAngle(const std::vector<double>& angles, const std::vector<color::Lab>& labs);
+// "the colorimeter's grid 360-830 nm ..." for the report.
+std::string ColourRangeText(const ValidationReport& report);
+
+}  // namespace alloycolor::app
+
+#endif  // ALLOYCOLOR_APP_REPORT_METRICS_H_

@@ -1,0 +1,141 @@
+// Held-out validation as a library: for each split of a data set into training and
+// held-out samples, every method is built on the training samples only and predicts each
+// held-out composition; plain structs in, plain structs out, so the command line, the
+// report writers and the Python module all see the same numbers. The builder is passed in
+// (ValidationOptions::build, normally fit::BuildModel), so this library needs no solver.
+//
+// Metrics per method and held-out sample:
+//  - delta_e00[angle]: CIEDE2000 between the measured and the predicted colour of the
+//    polished metal (Fresnel reflectance, eq. 2-4, integrated against the illuminant and
+//    observer, eq. 5; CIELAB relative to the illuminant's white). Both spectra are held at
+//    their nearest measured or predicted wavelength where the colorimeter's grid
+//    (360-830 nm for D65) reaches beyond 380-780 nm; the prediction is evaluated on
+//    380-780 nm, exactly as `alloycolor predict` writes it by default, so the numbers can be
+//    recomputed from its output. Not available when the data do not cover 380-780 nm.
+//  - delta_e00_sigma[angle]: the model's own one-sigma colour uncertainty
+//    (color::DeltaE00Sigma) where AlloyModel::HasUncertainty().
+//  - reflectance_rms, reflectance_max: normal-incidence reflectance error over 380-780 nm
+//    on a 5 nm grid (measured n, k interpolated linearly); for data that do not cover the
+//    visible (infrared sets), over the held-out sample's own wavelengths inside the model's
+//    range. n_max_abs, k_max_abs: largest |dn|, |dk| on the same wavelengths.
+// Drude curves: tau_fs(x) = hbar / gamma and m*/m_e = kPlasmaEv2M3 N_e(x) / wp^2 at a few
+// wavelengths, from AlloyModel::DrudeAt (the paper method's own interpolated tau and m*,
+// the other methods' eps inverted with eq. 11, 12 where it is invertible).
+
+#include <array>
+#include <cstdint>
+#ifndef ALLOYCOLOR_VALIDATE_VALIDATION_H_
+#define ALLOYCOLOR_VALIDATE_VALIDATION_H_
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "alloycolor/color/colorimetry.h"
+#include "alloycolor/core/dataset.h"
+#include "alloycolor/core/progress.h"
+#include "alloycolor/model/alloy_model.h"
+
+namespace alloycolor::validate {
+
+// Builds a method's model on a training set (fit::BuildModel with default settings).
+using ModelBuilder =
+    std::function<std::unique_ptr<AlloyModel>(const std::string& method, const Dataset& training)>;
+
+struct ValidationOptions {
+  ModelBuilder build;                // required
+  std::vector<std::string> methods;  // names of the registry (model/registry.h)
+  std::vector<double> angles_deg;    // incidence angles for delta_e00
+  std::string mode;                  // "loo" or "holdout", recorded in the report
+  int sigma_draws = 64;              // draws for delta_e00_sigma
+};
+
+// What one method predicts for one held-out sample.
+struct MethodResult {
+  std::string error;  // non-empty: the method could not be built or evaluated
+  // Colour (empty when not available): one entry per angle.
+  std::vector<double> delta_e00;
+  std::vector<double> delta_e00_sigma;  // empty without uncertainty
+  std::vector<std::array<std::uint8_t, 3>> srgb8;
+  std::vector<color::Lab> lab;
+  // Spectral errors on lambda_nm (see above).
+  double reflectance_rms = 0, reflectance_max = 0, n_max_abs = 0, k_max_abs = 0;
+  std::vector<double> lambda_nm, n, k, reflectance;  // predicted, for plots
+};
+
+struct HoldoutResult {
+  double x_atomic = 0, x_given = 0;
+  std::string file, path;
+  int split = 0;
+  // Measured, on the metric wavelengths (those of the first method that could be
+  // evaluated; every method trained on a split shares them).
+  std::vector<double> lambda_nm, n, k, reflectance;
+  std::string metric_range;                        // how lambda_nm was chosen, for the report
+  std::vector<std::array<std::uint8_t, 3>> srgb8;  // per angle; empty without colour
+  std::vector<color::Lab> lab;
+  std::string colour_note;  // why there is no colour, when there is none
+  std::map<std::string, MethodResult> results;
+};
+
+// tau and m* against composition at one wavelength, for one split.
+struct DrudeCurve {
+  double lambda_nm = 0;
+  std::vector<double> x;                              // composition grid
+  std::map<std::string, std::vector<double>> tau_fs;  // per method; NaN where undefined
+  std::map<std::string, std::vector<double>> mass;    // m*/m_e
+  // Measured samples' own inversion (NaN where eq. 11, 12 are undefined).
+  std::vector<double> train_x, train_tau_fs, train_mass;
+  std::vector<double> holdout_x, holdout_tau_fs, holdout_mass;
+};
+
+struct SplitResult {
+  std::vector<double> train_x, holdout_x;
+  std::map<std::string, std::string> errors;                 // method -> why it could not be built
+  std::map<std::string, std::vector<std::string>> warnings;  // method -> its warnings
+  std::vector<DrudeCurve> drude;
+};
+
+struct ValidationReport {
+  std::string data;  // the manifest
+  std::string name;  // the data set's name
+  std::string system;
+  std::string composition;  // of the manifest; report x values are atomic fractions
+  std::string element_a, element_b;
+  std::string mode;
+  std::vector<std::string> methods;
+  std::vector<double> angles_deg;
+  std::string illuminant;
+  int observer_deg = 2;
+  std::vector<double> colour_nm;  // the colorimeter's grid ends
+  std::vector<std::string> dataset_warnings;
+  std::vector<SplitResult> splits;
+  std::vector<HoldoutResult> holdouts;
+};
+
+// Runs every method on every split (each split: the compositions held out, atomic
+// fractions of samples of the data set). A method that fails on a split is recorded
+// there; a method that fails on every split (an unknown name) throws its first error
+// before the other methods' long work. Progress goes to `progress` (may be empty).
+ValidationReport ComputeValidation(const Dataset& dataset,
+                                   const std::vector<std::vector<double>>& splits,
+                                   const color::Colorimeter& colorimeter,
+                                   const ValidationOptions& options,
+                                   const ProgressCallback& progress);
+
+
+// How the observed delta_e00 compares with the model's own one-sigma, for one method at one
+// angle, pooled over every held-out sample: the fractions within 1 and 2 sigma (about 68 %
+// and 95 % for honest error bars) and the median observed / sigma.
+struct SigmaCoverage {
+  int count = 0, within_1 = 0, within_2 = 0;
+  double median_ratio = 0;  // NaN when count is 0
+};
+SigmaCoverage Coverage(const ValidationReport& report, const std::string& method, int angle);
+
+}  // namespace alloycolor::validate
+
+#endif  // ALLOYCOLOR_VALIDATE_VALIDATION_H_

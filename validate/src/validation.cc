@@ -1,0 +1,388 @@
+#include "alloycolor/validate/validation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <cstdio>
+#include <limits>
+#include <utility>
+
+#include "alloycolor/color/material_color.h"
+#include "alloycolor/core/composition.h"
+#include "alloycolor/core/error.h"
+#include "alloycolor/core/spectrum.h"
+#include "alloycolor/core/units.h"
+#include "alloycolor/model/optics.h"
+
+
+namespace alloycolor::validate {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kVisibleLoNm = 380.0;
+constexpr double kVisibleHiNm = 780.0;
+constexpr double kMetricStepNm = 5.0;
+constexpr double kSameX = 1e-9;
+
+std::string Num(double v, const char* format = "%g") {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, format, v);
+  return buf;
+}
+
+std::string XList(const std::vector<double>& xs) {
+  std::string s;
+  for (double x : xs) s += (s.empty() ? "" : ", ") + Num(x, "%.4g");
+  return s;
+}
+
+// ---------------------------------------------------------------------------------------
+// Computation.
+
+// The wavelengths on which n, k and reflectance errors are taken (see report.h).
+std::vector<double> MetricGrid(const AlloyModel& model, const NkSpectrum& measured,
+                               std::string* description) {
+  const double lo = std::max(model.lambda_min_nm(), measured.lambda_min_nm());
+  const double hi = std::min(model.lambda_max_nm(), measured.lambda_max_nm());
+  if (lo <= kVisibleLoNm + 1e-9 && hi >= kVisibleHiNm - 1e-9) {
+    *description = "380-780 nm, 5 nm step";
+    return UniformGrid(kVisibleLoNm, kVisibleHiNm, kMetricStepNm);
+  }
+  std::vector<double> grid;
+  for (double l : measured.lambda_nm) {
+    if (l >= lo - 1e-9 && l <= hi + 1e-9) grid.push_back(std::clamp(l, lo, hi));
+  }
+  if (grid.size() < 2) {
+    throw Error(measured.source + " and the " + model.method() + " model share under two " +
+                "wavelengths (" + Num(lo) + "-" + Num(hi) + " nm)");
+  }
+  *description = "the measured sample's " + std::to_string(grid.size()) + " wavelengths in " +
+                 Num(grid.front()) + "-" + Num(grid.back()) +
+                 " nm (the data do not cover 380-780 nm)";
+  return grid;
+}
+
+std::vector<std::complex<double>> MeasuredIndex(const NkSpectrum& nk,
+                                                const std::vector<double>& grid) {
+  std::vector<std::complex<double>> index(grid.size());
+  for (size_t i = 0; i < grid.size(); ++i) index[i] = NkAt(nk, grid[i]);
+  return index;
+}
+
+// The predicted index on the colorimeter's grid held inside 380-780 nm: the spectrum
+// `alloycolor predict` writes by default, integrated as `alloycolor color --nk` would.
+std::vector<std::complex<double>> PredictedColourIndex(const color::Colorimeter& colorimeter,
+                                                       const AlloyModel& model, double x) {
+  if (model.lambda_min_nm() > kVisibleLoNm + 1e-9 || model.lambda_max_nm() < kVisibleHiNm - 1e-9) {
+    // Throws the standard message naming the model's range.
+    color::EvaluationGrid(colorimeter, model.lambda_min_nm(), model.lambda_max_nm(),
+                           "the " + model.method() + " model");
+  }
+  const std::vector<double> grid =
+      color::EvaluationGrid(colorimeter, kVisibleLoNm, kVisibleHiNm, model.method());
+  return model.Index(x, grid);
+}
+
+struct Colour {
+  std::vector<color::Lab> lab;
+  std::vector<std::array<std::uint8_t, 3>> srgb8;
+};
+
+Colour ColourAtAngles(const color::Colorimeter& colorimeter,
+                      const std::vector<std::complex<double>>& index,
+                      const std::vector<double>& angles_deg) {
+  Colour c;
+  for (double angle : angles_deg) {
+    const color::ColorResult r =
+        color::ColorFromXYZ(colorimeter, color::MaterialXYZ(colorimeter, index, angle));
+    c.lab.push_back(r.lab);
+    c.srgb8.push_back(r.srgb8);
+  }
+  return c;
+}
+
+struct Spectra {
+  std::vector<double> n, k, reflectance;
+};
+
+Spectra SpectraOf(const std::vector<std::complex<double>>& index) {
+  Spectra s;
+  s.reflectance = color::ReflectanceSpectrum(index, 0.0);
+  for (const auto& v : index) {
+    s.n.push_back(v.real());
+    s.k.push_back(v.imag());
+  }
+  return s;
+}
+
+// The composition with atomic fraction x as a sample of the data set.
+const Sample& SampleAt(const Dataset& dataset, double x) {
+  for (const Sample& s : dataset.samples) {
+    if (std::abs(s.x_atomic - x) <= kSameX) return s;
+  }
+  throw Error("no sample at x = " + Num(x));
+}
+
+// Wavelengths for the tau, m* curves: 450, 550, 650 nm when the training data cover them,
+// otherwise a quarter, a half and three quarters of the common range (2 digits).
+std::vector<double> DrudeWavelengths(double lo, double hi) {
+  if (lo <= 450 && hi >= 650) return {450, 550, 650};
+  std::vector<double> out;
+  for (double f : {0.25, 0.5, 0.75}) {
+    const double l = lo + f * (hi - lo);
+    const double scale = std::pow(10.0, std::floor(std::log10(l)) - 1);
+    out.push_back(std::clamp(std::round(l / scale) * scale, lo, hi));
+  }
+  return out;
+}
+
+// tau_fs, m*/m_e from Drude parameters at composition x.
+void TauMass(const DrudePoint& p, double x, const AlloySystem& system, double* tau_fs,
+             double* mass) {
+  *tau_fs = TauFsFromGammaEv(p.gamma_ev);
+  *mass = EffectiveMassRatio(FreeElectronDensityM3(x, system), p.wp2_ev2);
+}
+
+// tau_fs, m*/m_e of a measured spectrum at lambda by eq. 11, 12; NaN where undefined.
+void MeasuredTauMass(const NkSpectrum& nk, double x, double lambda_nm, const AlloySystem& system,
+                     double* tau_fs, double* mass) {
+  *tau_fs = *mass = kNaN;
+  if (lambda_nm < nk.lambda_min_nm() || lambda_nm > nk.lambda_max_nm()) return;
+  const std::complex<double> i = NkAt(nk, lambda_nm);
+  const std::complex<double> eps = i * i;
+  if (!DrudeInvertible(eps.real(), eps.imag())) return;
+  TauMass(InvertDrude(OmegaEvFromLambdaNm(lambda_nm), eps.real(), eps.imag()), x, system, tau_fs,
+          mass);
+}
+
+void FillDrudeCurves(const AlloyModel& model, const std::string& method, const AlloySystem& system,
+                     std::vector<DrudeCurve>* curves) {
+  for (DrudeCurve& curve : *curves) {
+    std::vector<double>& taus = curve.tau_fs[method];
+    std::vector<double>& masses = curve.mass[method];
+    for (double x : curve.x) {
+      double tau = kNaN, mass = kNaN;
+      DrudePoint p;
+      if (model.DrudeAt(x, curve.lambda_nm, &p)) TauMass(p, x, system, &tau, &mass);
+      taus.push_back(tau);
+      masses.push_back(mass);
+    }
+  }
+}
+
+SplitResult PrepareSplit(const Dataset& dataset, const std::vector<double>& holdout_x) {
+  SplitResult split;
+  split.holdout_x = holdout_x;
+  std::sort(split.holdout_x.begin(), split.holdout_x.end());
+  double lo = -1e300, hi = 1e300;
+  for (const Sample& s : dataset.samples) {
+    const bool held = std::any_of(holdout_x.begin(), holdout_x.end(),
+                                  [&](double x) { return std::abs(x - s.x_atomic) <= kSameX; });
+    if (held) continue;
+    split.train_x.push_back(s.x_atomic);
+    lo = std::max(lo, s.nk.lambda_min_nm());
+    hi = std::min(hi, s.nk.lambda_max_nm());
+  }
+  if (!(lo < hi)) return split;
+  const double x_lo = dataset.samples.front().x_atomic;
+  const double x_hi = dataset.samples.back().x_atomic;
+  for (double lambda : DrudeWavelengths(lo, hi)) {
+    DrudeCurve curve;
+    curve.lambda_nm = lambda;
+    for (int i = 0; i <= 100; ++i) curve.x.push_back(x_lo + (x_hi - x_lo) * i / 100.0);
+    for (const Sample& s : dataset.samples) {
+      double tau, mass;
+      MeasuredTauMass(s.nk, s.x_atomic, lambda, dataset.system, &tau, &mass);
+      const bool held = std::any_of(split.holdout_x.begin(), split.holdout_x.end(),
+                                    [&](double x) { return std::abs(x - s.x_atomic) <= kSameX; });
+      (held ? curve.holdout_x : curve.train_x).push_back(s.x_atomic);
+      (held ? curve.holdout_tau_fs : curve.train_tau_fs).push_back(tau);
+      (held ? curve.holdout_mass : curve.train_mass).push_back(mass);
+    }
+    split.drude.push_back(std::move(curve));
+  }
+  return split;
+}
+
+// Predicts one held-out sample with one model; fills the measured side of `holdout` the
+// first time.
+MethodResult Evaluate(const AlloyModel& model, const Sample& sample,
+                      const color::Colorimeter& colorimeter, const ValidationOptions& options,
+                      HoldoutResult* holdout) {
+  MethodResult r;
+  std::string description;
+  r.lambda_nm = MetricGrid(model, sample.nk, &description);
+  const Spectra predicted = SpectraOf(model.Index(sample.x_atomic, r.lambda_nm));
+  const Spectra measured = SpectraOf(MeasuredIndex(sample.nk, r.lambda_nm));
+  if (holdout->lambda_nm.empty()) {
+    holdout->lambda_nm = r.lambda_nm;
+    holdout->n = measured.n;
+    holdout->k = measured.k;
+    holdout->reflectance = measured.reflectance;
+    holdout->metric_range = description;
+  }
+  double sum2 = 0;
+  for (size_t i = 0; i < r.lambda_nm.size(); ++i) {
+    const double dr = std::abs(predicted.reflectance[i] - measured.reflectance[i]);
+    sum2 += dr * dr;
+    r.reflectance_max = std::max(r.reflectance_max, dr);
+    r.n_max_abs = std::max(r.n_max_abs, std::abs(predicted.n[i] - measured.n[i]));
+    r.k_max_abs = std::max(r.k_max_abs, std::abs(predicted.k[i] - measured.k[i]));
+  }
+  r.reflectance_rms = std::sqrt(sum2 / r.lambda_nm.size());
+  r.n = predicted.n;
+  r.k = predicted.k;
+  r.reflectance = predicted.reflectance;
+  if (!holdout->lab.empty()) {
+    std::vector<std::complex<double>> index;
+    try {
+      index = PredictedColourIndex(colorimeter, model, sample.x_atomic);
+    } catch (const Error& e) {
+      r.error = std::string("no colour: ") + e.what();
+      return r;
+    }
+    const Colour c = ColourAtAngles(colorimeter, index, options.angles_deg);
+    r.lab = c.lab;
+    r.srgb8 = c.srgb8;
+    for (size_t a = 0; a < options.angles_deg.size(); ++a) {
+      r.delta_e00.push_back(color::DeltaE00(holdout->lab[a], r.lab[a]));
+      if (model.HasUncertainty()) {
+        r.delta_e00_sigma.push_back(color::DeltaE00Sigma(
+            colorimeter, model, sample.x_atomic, options.angles_deg[a], options.sigma_draws));
+      }
+    }
+  }
+  return r;
+}
+
+}  // namespace
+
+ValidationReport ComputeValidation(const Dataset& dataset,
+                                   const std::vector<std::vector<double>>& splits,
+                                   const color::Colorimeter& colorimeter,
+                                   const ValidationOptions& options,
+                                   const ProgressCallback& progress) {
+  ValidationReport report;
+  report.data = dataset.manifest_path;
+  report.name = dataset.name;
+  report.system = dataset.system.Name();
+  report.composition = dataset.composition;
+  report.element_a = dataset.system.a.symbol;
+  report.element_b = dataset.system.b.symbol;
+  report.mode = options.mode;
+  report.methods = options.methods;
+  report.angles_deg = options.angles_deg;
+  report.illuminant = colorimeter.illuminant();
+  report.observer_deg = colorimeter.observer_deg();
+  report.colour_nm = {colorimeter.lambda_nm().front(), colorimeter.lambda_nm().back()};
+  report.dataset_warnings = dataset.warnings;
+
+  // Held-out samples and their measured colour.
+  for (size_t s = 0; s < splits.size(); ++s) {
+    report.splits.push_back(PrepareSplit(dataset, splits[s]));
+    for (double x : report.splits.back().holdout_x) {
+      const Sample& sample = SampleAt(dataset, x);
+      HoldoutResult h;
+      h.x_atomic = sample.x_atomic;
+      h.x_given = sample.x_given;
+      h.file = sample.file;
+      h.path = sample.path;
+      h.split = static_cast<int>(s);
+      try {
+        const Colour c = ColourAtAngles(colorimeter, color::IndexOnGrid(colorimeter, sample.nk),
+                                        options.angles_deg);
+        h.lab = c.lab;
+        h.srgb8 = c.srgb8;
+      } catch (const Error& e) {
+        h.colour_note = e.what();
+      }
+      report.holdouts.push_back(std::move(h));
+    }
+  }
+
+  const int total = static_cast<int>(options.methods.size() * splits.size());
+  int step = 0;
+  using Key = std::pair<std::string, size_t>;  // method, split
+  std::map<Key, std::unique_ptr<AlloyModel>> built;
+  std::map<Key, std::string> failed;
+  const auto build = [&](const std::string& method, size_t s) -> const AlloyModel* {
+    const Key key{method, s};
+    if (built.count(key)) return built[key].get();
+    if (failed.count(key)) return nullptr;
+    const SplitResult& split = report.splits[s];
+    ++step;
+    if (progress) {
+      progress("validate [" + std::to_string(step) + "/" + std::to_string(total) + "] " + method +
+               ": training on " + std::to_string(split.train_x.size()) +
+               " samples, holding out x = " + XList(split.holdout_x));
+    }
+    try {
+      built[key] = options.build(method, WithoutSamples(dataset, split.holdout_x));
+      return built[key].get();
+    } catch (const Error& e) {
+      failed[key] = e.what();
+      if (progress) progress("validate: " + method + " failed: " + e.what());
+      return nullptr;
+    }
+  };
+  // First, every method until it builds on some split: a method that builds on none (an
+  // unknown name, say) is refused before the long work.
+  for (const std::string& method : options.methods) {
+    bool any = false;
+    for (size_t s = 0; s < report.splits.size() && !any; ++s) any = build(method, s) != nullptr;
+    if (!any) throw Error(failed[{method, 0}]);
+  }
+  for (const std::string& method : options.methods) {
+    for (size_t s = 0; s < report.splits.size(); ++s) {
+      SplitResult& split = report.splits[s];
+      const AlloyModel* model = build(method, s);
+      if (model == nullptr) {
+        split.errors[method] = failed[{method, s}];
+        continue;
+      }
+      split.warnings[method] = model->warnings();
+      FillDrudeCurves(*model, method, dataset.system, &split.drude);
+      for (HoldoutResult& h : report.holdouts) {
+        if (h.split != static_cast<int>(s)) continue;
+        const Sample& sample = SampleAt(dataset, h.x_atomic);
+        try {
+          h.results[method] = Evaluate(*model, sample, colorimeter, options, &h);
+        } catch (const Error& e) {
+          h.results[method].error = e.what();
+        }
+      }
+      built.erase({method, s});
+    }
+  }
+  return report;
+}
+
+// ---------------------------------------------------------------------------------------
+
+SigmaCoverage Coverage(const ValidationReport& report, const std::string& method, int angle) {
+  SigmaCoverage s;
+  s.median_ratio = kNaN;
+  std::vector<double> ratios;
+  for (const HoldoutResult& h : report.holdouts) {
+    const auto it = h.results.find(method);
+    if (it == h.results.end()) continue;
+    const MethodResult& r = it->second;
+    if (angle >= static_cast<int>(r.delta_e00_sigma.size())) continue;
+    const double sigma = r.delta_e00_sigma[angle];
+    const double observed = r.delta_e00[angle];
+    if (!(sigma >= 0)) continue;
+    ++s.count;
+    s.within_1 += observed <= sigma;
+    s.within_2 += observed <= 2 * sigma;
+    ratios.push_back(sigma > 0 ? observed / sigma : std::numeric_limits<double>::infinity());
+  }
+  if (!ratios.empty()) {
+    std::sort(ratios.begin(), ratios.end());
+    const size_t n = ratios.size();
+    s.median_ratio = n % 2 ? ratios[n / 2] : 0.5 * (ratios[n / 2 - 1] + ratios[n / 2]);
+  }
+  return s;
+}
+
+
+}  // namespace alloycolor::validate

@@ -189,7 +189,7 @@ void Run(const ExportOptions& o) {
     for (const std::string& note : spectra.notes) Warn(note);
   }
   for (const auto& [path, text] : files) WriteOutput(path, text, o.quiet);
-  if (!o.quiet) {
+  if (!o.quiet && o.format != "spd") {
     const auto& c = m.rgb_conductor;
     std::cerr << "alloycolor: colours in " << exports::kColorSpaceNote << "\n";
     std::cerr << "alloycolor: rgb-conductor eta " << Triple(c.eta) << " k " << Triple(c.k) << "; "

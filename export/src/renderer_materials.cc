@@ -238,6 +238,15 @@ RendererMaterials FitRendererMaterials(const color::Colorimeter& d65,
   } else {
     m.rgb_conductor.fit = "per-channel least squares on cube roots";
   }
+  // A channel driven to R = 1 may end at eta = k = 1e-4 (N -> 0) as well as at
+  // eta = 1e-4, k = 100; the metal-like one is written when it does as well.
+  for (int c = 0; c < 3; ++c) {
+    if (p[2 * c] <= kMinLog + 1e-9 && p[2 * c + 1] < 0) {
+      Eigen::VectorXd q = p;
+      q[2 * c + 1] = kMaxLog;
+      if (delta_e(q).maxCoeff() <= delta_e(p).maxCoeff() + 1e-9) p = q;
+    }
+  }
   for (int c = 0; c < 3; ++c) {
     const std::complex<double> index = IndexFromLogs(p[2 * c], p[2 * c + 1]);
     Channel(m.rgb_conductor.eta, c) = index.real();

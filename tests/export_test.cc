@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "alloycolor/model/alloy_model.h"
 #include "alloycolor/core/dataset.h"
 #include "alloycolor/core/io.h"
+#include "alloycolor/model/alloy_model.h"
 #include "alloycolor/model/sample_models.h"
 #include "alloycolor/model/smooth_model.h"
 #include "test_util.h"
@@ -117,11 +117,13 @@ void ExpectCovers360To830(const std::string& prefix) {
 
 std::string Quote(const std::string& s) { return "\"" + s + "\""; }
 
+// The material files name the spectrum files beside them: by file name alone.
 void CheckMaterialFiles(const std::string& prefix) {
+  const std::string base = fs::path(prefix).filename().string();
   const std::string pbrt = ReadFileText(prefix + ".pbrt");
   const std::string expected_line = "Material \"conductor\" \"spectrum eta\" " +
-                                    Quote(prefix + ".eta.spd") + " \"spectrum k\" " +
-                                    Quote(prefix + ".k.spd") + "\n";
+                                    Quote(base + ".eta.spd") + " \"spectrum k\" " +
+                                    Quote(base + ".k.spd") + "\n";
   EXPECT_NE(pbrt.find(expected_line), std::string::npos) << pbrt;
   // Everything else is a comment.
   std::istringstream lines(pbrt);
@@ -135,10 +137,10 @@ void CheckMaterialFiles(const std::string& prefix) {
   EXPECT_EQ(xml.rfind("<?xml version=\"1.0\"", 0), 0u);
   EXPECT_NE(xml.find("<bsdf type=\"conductor\""), std::string::npos);
   EXPECT_NE(xml.find("version=\"3.0.0\""), std::string::npos);
-  EXPECT_NE(xml.find("<spectrum name=\"eta\" filename=" + Quote(prefix + ".eta.spd") + "/>"),
+  EXPECT_NE(xml.find("<spectrum name=\"eta\" filename=" + Quote(base + ".eta.spd") + "/>"),
             std::string::npos)
       << xml;
-  EXPECT_NE(xml.find("<spectrum name=\"k\" filename=" + Quote(prefix + ".k.spd") + "/>"),
+  EXPECT_NE(xml.find("<spectrum name=\"k\" filename=" + Quote(base + ".k.spd") + "/>"),
             std::string::npos);
   EXPECT_NE(xml.find("</bsdf>"), std::string::npos);
   // Comments hold no "--" (invalid XML).

@@ -5,37 +5,72 @@
 #include <complex>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <sstream>
+#include <utility>
 
 #include "alloycolor/core/error.h"
+#include "text.h"
 
 namespace alloycolor::exports {
 namespace {
 
+using text::Number;
+using text::OneLine;
+using text::ShortNumber;
+using text::XmlComment;
+using text::XmlEscape;
+
 constexpr double kToleranceNm = 1e-9;
 
-// The shortest of 15-17 significant digits that reads back as the same double.
-std::string Number(double value) {
-  char buf[40];
-  for (int digits = 15; digits <= 17; ++digits) {
-    std::snprintf(buf, sizeof buf, "%.*g", digits, value);
-    if (std::strtod(buf, nullptr) == value) break;
-  }
-  return buf;
+// One comment line.
+std::string Comment(const std::string& text) { return "# " + OneLine(text) + "\n"; }
+
+// The wavelength as the renderers store it: pbrt-v4 parses the text as a 32-bit float,
+// Mitsuba 3 as a double and then casts it to float. Both readings of the written text.
+std::pair<float, float> AsFloats(double lambda_nm) {
+  const std::string text = Number(lambda_nm);
+  return {std::strtof(text.c_str(), nullptr),
+          static_cast<float>(std::strtod(text.c_str(), nullptr))};
 }
 
-std::string ShortNumber(double value) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%g", value);
-  return buf;
-}
-
-// One comment line: no line breaks inside.
-std::string Comment(std::string text) {
-  for (char& c : text) {
-    if (c == '\n' || c == '\r') c = ' ';
+// Points whose wavelengths are equal as floats (in either reading) are merged into the
+// first of them, with n and k averaged, and a note says how many and where.
+ConductorSpectra MergeFloatCollisions(ConductorSpectra spectra) {
+  ConductorSpectra out = spectra;
+  out.lambda_nm.clear();
+  out.n.clear();
+  out.k.clear();
+  int merged = 0;
+  double first_merged = 0.0;
+  std::size_t i = 0;
+  while (i < spectra.lambda_nm.size()) {
+    const auto [f0, d0] = AsFloats(spectra.lambda_nm[i]);
+    std::size_t j = i + 1;
+    double n_sum = spectra.n[i], k_sum = spectra.k[i];
+    while (j < spectra.lambda_nm.size()) {
+      const auto [f1, d1] = AsFloats(spectra.lambda_nm[j]);
+      if (f1 > f0 && d1 > d0) break;
+      n_sum += spectra.n[j];
+      k_sum += spectra.k[j];
+      ++j;
+    }
+    if (j - i > 1) {
+      if (merged == 0) first_merged = spectra.lambda_nm[i];
+      merged += static_cast<int>(j - i - 1);
+    }
+    out.lambda_nm.push_back(spectra.lambda_nm[i]);
+    out.n.push_back(n_sum / static_cast<double>(j - i));
+    out.k.push_back(k_sum / static_cast<double>(j - i));
+    i = j;
   }
-  return "# " + text + "\n";
+  if (merged > 0) {
+    out.notes.push_back(std::to_string(merged) +
+                        " point(s) closer than 32-bit floats resolve (the renderers' "
+                        "wavelengths) merged into their neighbour, n and k averaged, first at " +
+                        ShortNumber(first_merged) + " nm");
+  }
+  return out;
 }
 
 // Adds points at 360 and 830 nm holding the end values where the data stop short, after
@@ -49,8 +84,15 @@ ConductorSpectra HoldEnds(ConductorSpectra spectra, const std::string& what) {
     }
   }
   for (std::size_t i = 0; i < spectra.n.size(); ++i) {
+    const std::string at = " at " + ShortNumber(spectra.lambda_nm[i]) + " nm";
     if (!std::isfinite(spectra.n[i]) || !std::isfinite(spectra.k[i])) {
-      throw Error(what + ": n or k is not finite at " + ShortNumber(spectra.lambda_nm[i]) + " nm");
+      throw Error(what + ": n or k is not finite" + at);
+    }
+    if (!(spectra.n[i] > 0) || spectra.k[i] < 0) {
+      throw Error(what + ": n = " + ShortNumber(spectra.n[i]) +
+                  ", k = " + ShortNumber(spectra.k[i]) + at +
+                  "; renderers need n > 0 and k >= 0 (Mitsuba 3's spectral variants refuse "
+                  "negative values)");
     }
   }
   const double lo = spectra.lambda_nm.front();
@@ -81,53 +123,26 @@ ConductorSpectra HoldEnds(ConductorSpectra spectra, const std::string& what) {
     spectra.n.push_back(spectra.n.back());
     spectra.k.push_back(spectra.k.back());
   }
-  return spectra;
+  return MergeFloatCollisions(std::move(spectra));
 }
 
+// Control characters cannot be written in either renderer's strings.
 void CheckFileName(const std::string& name) {
-  if (name.empty() || name.find_first_of("\"\n\r") != std::string::npos) {
-    throw Error("file name '" + name + "' cannot be written into a material file");
+  const bool control = std::any_of(name.begin(), name.end(),
+                                   [](char c) { return static_cast<unsigned char>(c) < 0x20; });
+  if (name.empty() || control) {
+    throw Error("file name '" + OneLine(name) + "' cannot be written into a material file");
   }
 }
 
-std::string XmlEscape(const std::string& text) {
-  std::string out;
+// pbrt-v4's tokenizer reads '\\' in a quoted string as an escape ("\\\\", "\\\"", ...).
+std::string PbrtQuoted(const std::string& text) {
+  std::string out = "\"";
   for (char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&apos;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
-
-// XML comments may not contain "--".
-std::string XmlComment(std::string text) {
-  for (char& c : text) {
-    if (c == '\n' || c == '\r') c = ' ';
-  }
-  std::string out;
-  for (char c : text) {
-    if (c == '-' && !out.empty() && out.back() == '-') out += ' ';
+    if (c == '\\' || c == '"') out += '\\';
     out += c;
   }
-  if (!out.empty() && out.back() == '-') out += ' ';
-  return "<!-- " + out + " -->\n";
+  return out + "\"";
 }
 
 std::string Range(const ConductorSpectra& s) {
@@ -135,6 +150,15 @@ std::string Range(const ConductorSpectra& s) {
 }
 
 }  // namespace
+
+std::string SpectrumFileReference(const std::string& spd_path, const std::string& scene_dir) {
+  namespace fs = std::filesystem;
+  if (scene_dir.empty()) return fs::path(spd_path).filename().generic_string();
+  const fs::path target = fs::absolute(spd_path).lexically_normal();
+  const fs::path base = fs::absolute(scene_dir).lexically_normal();
+  const fs::path relative = target.lexically_relative(base);
+  return (relative.empty() ? target : relative).generic_string();
+}
 
 std::vector<double> ModelExportGrid(const AlloyModel& model) {
   if (const std::vector<double> native = model.native_grid_nm(); !native.empty()) {
@@ -196,30 +220,31 @@ std::string SpdText(const ConductorSpectra& spectra, bool eta,
 }
 
 std::string PbrtMaterialText(const ConductorSpectra& spectra, const std::string& eta_file,
-                             const std::string& k_file, const std::vector<std::string>& header) {
+                             const std::string& k_file, const std::string& names_note,
+                             const std::vector<std::string>& header) {
   CheckFileName(eta_file);
   CheckFileName(k_file);
   std::string out = Comment("pbrt-v4 smooth conductor: " + spectra.material);
-  out += Comment("n and k over " + Range(spectra) +
-                 " from the spectrum files (wavelength_nm "
-                 "value); relative names resolve against the scene file's folder");
+  out +=
+      Comment("n and k over " + Range(spectra) + " from the spectrum files (wavelength_nm value)");
+  out += Comment(names_note);
   for (const std::string& note : spectra.notes) out += Comment(note);
   for (const std::string& line : header) out += Comment(line);
-  out += "Material \"conductor\" \"spectrum eta\" \"" + eta_file + "\" \"spectrum k\" \"" + k_file +
-         "\"\n";
+  out += "Material \"conductor\" \"spectrum eta\" " + PbrtQuoted(eta_file) + " \"spectrum k\" " +
+         PbrtQuoted(k_file) + "\n";
   return out;
 }
 
 std::string MitsubaBsdfXml(const ConductorSpectra& spectra, const std::string& id,
                            const std::string& eta_file, const std::string& k_file,
-                           const std::vector<std::string>& header) {
+                           const std::string& names_note, const std::vector<std::string>& header) {
   CheckFileName(eta_file);
   CheckFileName(k_file);
   std::string out = "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n";
   out += XmlComment("Mitsuba 3 smooth conductor: " + spectra.material);
   out += XmlComment("n (eta) and k over " + Range(spectra) +
-                    " from the .spd files (wavelength_nm value); relative names resolve "
-                    "against the scene file's folder");
+                    " from the .spd files (wavelength_nm value)");
+  out += XmlComment(names_note);
   for (const std::string& note : spectra.notes) out += XmlComment(note);
   for (const std::string& line : header) out += XmlComment(line);
   out += "<bsdf type=\"conductor\" id=\"" + XmlEscape(id) + "\" version=\"3.0.0\">\n";

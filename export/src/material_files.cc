@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "alloycolor/core/markup.h"
 #include "text.h"
 
 namespace alloycolor::exports {
@@ -10,7 +11,6 @@ namespace {
 
 using text::OneLine;
 using text::XmlComment;
-using text::XmlEscape;
 
 nlohmann::json Array(const color::RGB& c) { return nlohmann::json::array({c.r, c.g, c.b}); }
 
@@ -104,7 +104,7 @@ std::string MitsubaRgbConductorXml(const RendererMaterials& m, const std::string
   out += XmlComment(std::string("eta, k in ") + kColorSpaceNote);
   out += XmlComment(FitLine(m));
   for (const std::string& line : header) out += XmlComment(line);
-  out += "<bsdf type=\"conductor\" id=\"" + XmlEscape(id) + "\" version=\"3.0.0\">\n";
+  out += "<bsdf type=\"conductor\" id=\"" + EscapeXml(id) + "\" version=\"3.0.0\">\n";
   out += "    <rgb name=\"eta\" value=\"" + Triple(m.rgb_conductor.eta, ", ") + "\"/>\n";
   out += "    <rgb name=\"k\" value=\"" + Triple(m.rgb_conductor.k, ", ") + "\"/>\n";
   out += "</bsdf>\n";

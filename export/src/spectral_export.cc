@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "alloycolor/core/error.h"
+#include "alloycolor/core/markup.h"
 #include "text.h"
 
 namespace alloycolor::exports {
@@ -19,7 +20,6 @@ using text::Number;
 using text::OneLine;
 using text::ShortNumber;
 using text::XmlComment;
-using text::XmlEscape;
 
 constexpr double kToleranceNm = 1e-9;
 
@@ -247,9 +247,9 @@ std::string MitsubaBsdfXml(const ConductorSpectra& spectra, const std::string& i
   out += XmlComment(names_note);
   for (const std::string& note : spectra.notes) out += XmlComment(note);
   for (const std::string& line : header) out += XmlComment(line);
-  out += "<bsdf type=\"conductor\" id=\"" + XmlEscape(id) + "\" version=\"3.0.0\">\n";
-  out += "    <spectrum name=\"eta\" filename=\"" + XmlEscape(eta_file) + "\"/>\n";
-  out += "    <spectrum name=\"k\" filename=\"" + XmlEscape(k_file) + "\"/>\n";
+  out += "<bsdf type=\"conductor\" id=\"" + EscapeXml(id) + "\" version=\"3.0.0\">\n";
+  out += "    <spectrum name=\"eta\" filename=\"" + EscapeXml(eta_file) + "\"/>\n";
+  out += "    <spectrum name=\"k\" filename=\"" + EscapeXml(k_file) + "\"/>\n";
   out += "</bsdf>\n";
   return out;
 }

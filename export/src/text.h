@@ -41,32 +41,6 @@ inline std::string OneLine(std::string text) {
   return text;
 }
 
-inline std::string XmlEscape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&apos;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
-
 // XML comments may not contain "--".
 inline std::string XmlComment(std::string text) {
   text = OneLine(text);

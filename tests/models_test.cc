@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <fstream>
 
+#include "alloycolor/core/grid.h"
 #include "alloycolor/model/alloy_model.h"
 #include "alloycolor/core/composition.h"
 #include "alloycolor/core/dataset.h"

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "alloycolor/core/error.h"
+#include "alloycolor/core/grid.h"
 #include "alloycolor/model/optics.h"
 
 namespace alloycolor::color {
@@ -23,8 +24,8 @@ ColorResult ColorFromXYZ(const Colorimeter& colorimeter, const XYZ& xyz) {
 std::vector<double> EvaluationGrid(const Colorimeter& colorimeter, double lo_nm,
                                    double hi_nm, const std::string& what) {
   const std::vector<double>& grid = colorimeter.lambda_nm();
-  const double need_lo = std::max(380.0, grid.front());
-  const double need_hi = std::min(780.0, grid.back());
+  const double need_lo = std::max(kVisibleMinNm, grid.front());
+  const double need_hi = std::min(kVisibleMaxNm, grid.back());
   if (lo_nm > need_lo + 1e-9 || hi_nm < need_hi - 1e-9) {
     std::ostringstream msg;
     msg << what << ": covers " << lo_nm << "-" << hi_nm << " nm; colour needs "

@@ -7,7 +7,6 @@
 
 #include "alloycolor/core/error.h"
 #include "alloycolor/model/optics.h"
-#include "alloycolor/model/smooth_model.h"
 #include "alloycolor/core/units.h"
 #include "alloycolor/color/material_color.h"
 
@@ -48,62 +47,18 @@ ColorSweep::ColorSweep(const Colorimeter& colorimeter, const AlloyModel& model, 
   normal_ = angle_deg == 0.0;
   grid_nm_ = EvaluationGrid(colorimeter, model.lambda_min_nm(), model.lambda_max_nm(),
                             "the " + model.method() + " model");
-  smooth_ = dynamic_cast<const SmoothModel*>(&model);
-  if (smooth_ == nullptr) return;
-  // The smooth model's coefficients at each grid wavelength, interpolated in wavelength
-  // exactly as SmoothModel::Permittivity does.
-  const std::vector<double>& nodes = smooth_->grid_nm();
-  const std::vector<std::vector<double>>& coeffs = smooth_->coeffs();
-  basis_size_ = smooth_->basis_size();
-  const int nc = 2 * basis_size_;
-  coeffs_.resize(grid_nm_.size() * nc);
-  omega_ev_.resize(grid_nm_.size());
-  for (size_t i = 0; i < grid_nm_.size(); ++i) {
-    const double l = std::clamp(grid_nm_[i], nodes.front(), nodes.back());
-    size_t hi = std::upper_bound(nodes.begin(), nodes.end(), l) - nodes.begin();
-    hi = std::clamp<size_t>(hi, 1, nodes.size() - 1);
-    const size_t lo = hi - 1;
-    const double t = (l - nodes[lo]) / (nodes[hi] - nodes[lo]);
-    for (int d = 0; d < nc; ++d) {
-      const double c_lo = coeffs[lo][d], c_hi = coeffs[hi][d];
-      coeffs_[i * nc + d] = t == 0.0 ? c_lo : t == 1.0 ? c_hi : c_lo + (c_hi - c_lo) * t;
-    }
-    omega_ev_[i] = OmegaEvFromLambdaNm(grid_nm_[i]);
-  }
+  bound_ = model.Bind(grid_nm_);
+  eps_.resize(grid_nm_.size());
 }
 
 XYZ ColorSweep::ExactXYZ(double x_atomic) const {
-  return smooth_ != nullptr ? SmoothXYZ(x_atomic) : GenericXYZ(x_atomic);
-}
-
-XYZ ColorSweep::SmoothXYZ(double x_atomic) const {
-  const int nb = basis_size_;
-  double basis[kSmoothMaxDegree + 1];
-  LegendreBasis(smooth_->BasisArgument(x_atomic), nb - 1, basis);
+  bound_->Permittivity(x_atomic, eps_.data());
   const std::vector<double>& wx = colorimeter_.wx();
   const std::vector<double>& wy = colorimeter_.wy();
   const std::vector<double>& wz = colorimeter_.wz();
   XYZ xyz{0.0, 0.0, 0.0};
   for (size_t i = 0; i < grid_nm_.size(); ++i) {
-    const Complex<double> eps =
-        SmoothNodePermittivity(&coeffs_[i * 2 * nb], basis, nb, omega_ev_[i]);
-    const double r = ReflectanceFromEps(eps, normal_, cos_psi_);
-    xyz.X += wx[i] * r;
-    xyz.Y += wy[i] * r;
-    xyz.Z += wz[i] * r;
-  }
-  return xyz;
-}
-
-XYZ ColorSweep::GenericXYZ(double x_atomic) const {
-  const std::vector<std::complex<double>> eps = model_.Permittivity(x_atomic, grid_nm_);
-  const std::vector<double>& wx = colorimeter_.wx();
-  const std::vector<double>& wy = colorimeter_.wy();
-  const std::vector<double>& wz = colorimeter_.wz();
-  XYZ xyz{0.0, 0.0, 0.0};
-  for (size_t i = 0; i < grid_nm_.size(); ++i) {
-    const double r =
-        ReflectanceFromEps(Complex<double>{eps[i].real(), eps[i].imag()}, normal_, cos_psi_);
+    const double r = ReflectanceFromEps(eps_[i], normal_, cos_psi_);
     xyz.X += wx[i] * r;
     xyz.Y += wy[i] * r;
     xyz.Z += wz[i] * r;

@@ -10,6 +10,7 @@
 
 #include "alloycolor/fit/physical_costs.h"
 #include "alloycolor/core/error.h"
+#include "alloycolor/core/grid.h"
 #include "alloycolor/model/optics.h"
 #include "alloycolor/core/units.h"
 
@@ -37,12 +38,8 @@ struct FitData {
 };
 
 FitData PrepareData(const Dataset& dataset, const PhysicalFitOptions& options) {
-  double lo = -1e300, hi = 1e300;
-  for (const Sample& s : dataset.samples) {
-    lo = std::max(lo, s.nk.lambda_min_nm());
-    hi = std::min(hi, s.nk.lambda_max_nm());
-  }
-  if (!(lo < hi)) throw Error(dataset.manifest_path + ": the samples share no wavelength range");
+  const WavelengthRange range = CommonRange(dataset);
+  const double lo = range.lo_nm, hi = range.hi_nm;
   FitData data;
   double from = options.lambda_from_nm, to = options.lambda_to_nm;
   if (from == 0 && to == 0) {

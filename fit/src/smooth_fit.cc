@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "alloycolor/core/error.h"
+#include "alloycolor/core/grid.h"
 #include "alloycolor/model/optics.h"
 #include "alloycolor/core/units.h"
 

@@ -22,6 +22,29 @@ std::vector<std::complex<double>> AlloyModel::Index(
   return eps;
 }
 
+namespace {
+
+// Any model on a grid, through AlloyModel::Permittivity.
+class GenericBoundModel : public BoundModel {
+ public:
+  GenericBoundModel(const AlloyModel& model, std::vector<double> lambda_nm)
+      : BoundModel(std::move(lambda_nm)), model_(model) {}
+  void Permittivity(double x_atomic, Complex<double>* eps) const override {
+    const std::vector<std::complex<double>> e = model_.Permittivity(x_atomic, lambda_nm());
+    for (size_t i = 0; i < e.size(); ++i) eps[i] = {e[i].real(), e[i].imag()};
+  }
+
+ private:
+  const AlloyModel& model_;
+};
+
+}  // namespace
+
+std::unique_ptr<BoundModel> AlloyModel::Bind(const std::vector<double>& lambda_nm) const {
+  CheckLambda(lambda_nm);
+  return std::make_unique<GenericBoundModel>(*this, lambda_nm);
+}
+
 std::vector<std::vector<std::complex<double>>> AlloyModel::PermittivityDraws(
     double, const std::vector<double>&, int, std::uint32_t) const {
   return {};
@@ -285,23 +308,5 @@ std::unique_ptr<AlloyModel> ReadModelFile(const std::string& path) {
 }
 
 std::string ModelFileText(const AlloyModel& model) { return model.ToJson().dump(1) + "\n"; }
-
-std::vector<double> DefaultGrid(const Dataset& dataset) {
-  if (dataset.samples.empty()) throw Error(dataset.manifest_path + ": no samples");
-  double lo = -1e300, hi = 1e300;
-  for (const Sample& s : dataset.samples) {
-    lo = std::max(lo, s.nk.lambda_min_nm());
-    hi = std::min(hi, s.nk.lambda_max_nm());
-  }
-  if (!(lo < hi)) {
-    throw Error(dataset.manifest_path + ": the samples share no wavelength range");
-  }
-  if (lo <= 380.0 && hi >= 780.0) {
-    const double first = std::ceil(std::max(lo, 360.0) / 5.0 - 1e-9) * 5.0;
-    const double last = std::floor(std::min(hi, 830.0) / 5.0 + 1e-9) * 5.0;
-    return UniformGrid(first, last, 5.0);
-  }
-  return UniformGrid(lo, hi, (hi - lo) / 100.0);
-}
 
 }  // namespace alloycolor

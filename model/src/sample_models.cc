@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "alloycolor/core/error.h"
+#include "alloycolor/core/grid.h"
 #include "alloycolor/core/io.h"
 #include "alloycolor/model/optics.h"
 #include "alloycolor/core/units.h"
@@ -40,12 +41,8 @@ Bracket FindBracket(const std::vector<double>& xs, double x) {
 
 SampleModel::SampleModel(Kind kind, const Dataset& dataset) : kind_(kind) {
   for (const Sample& s : dataset.samples) nodes_.push_back({s.x_atomic, s.nk});
-  double lo = -1e300, hi = 1e300;
-  for (const Node& node : nodes_) {
-    lo = std::max(lo, node.nk.lambda_min_nm());
-    hi = std::min(hi, node.nk.lambda_max_nm());
-  }
-  SetCommon(dataset, lo, hi);
+  const WavelengthRange range = CommonRange(dataset);
+  SetCommon(dataset, range.lo_nm, range.hi_nm);
   try {
     Validate();
   } catch (const Error& e) {  // name the data set at fault

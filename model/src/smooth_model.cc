@@ -105,6 +105,55 @@ void SmoothModel::Validate(const std::string& source) const {
   if (!(x_max() > x_min())) throw Error(where + "x_range must not be empty");
 }
 
+namespace {
+
+class BoundSmoothModel : public BoundModel {
+ public:
+  BoundSmoothModel(const SmoothModel& model, std::vector<double> lambda_nm)
+      : BoundModel(std::move(lambda_nm)), model_(model), nb_(model.basis_size()) {
+    const std::vector<double>& nodes = model.grid_nm();
+    const std::vector<std::vector<double>>& coeffs = model.coeffs();
+    const int nc = 2 * nb_;
+    const std::vector<double>& grid = this->lambda_nm();
+    coeffs_.resize(grid.size() * nc);
+    omega_ev_.resize(grid.size());
+    // Interpolated in wavelength exactly as SmoothModel::Permittivity does.
+    for (size_t i = 0; i < grid.size(); ++i) {
+      const double l = std::clamp(grid[i], nodes.front(), nodes.back());
+      size_t hi = std::upper_bound(nodes.begin(), nodes.end(), l) - nodes.begin();
+      hi = std::clamp<size_t>(hi, 1, nodes.size() - 1);
+      const size_t lo = hi - 1;
+      const double t = (l - nodes[lo]) / (nodes[hi] - nodes[lo]);
+      for (int d = 0; d < nc; ++d) {
+        const double c_lo = coeffs[lo][d], c_hi = coeffs[hi][d];
+        coeffs_[i * nc + d] = t == 0.0 ? c_lo : t == 1.0 ? c_hi : c_lo + (c_hi - c_lo) * t;
+      }
+      omega_ev_[i] = OmegaEvFromLambdaNm(grid[i]);
+    }
+  }
+
+  void Permittivity(double x_atomic, Complex<double>* eps) const override {
+    double basis[kSmoothMaxDegree + 1];
+    LegendreBasis(model_.BasisArgument(x_atomic), nb_ - 1, basis);
+    for (size_t i = 0; i < omega_ev_.size(); ++i) {
+      eps[i] = SmoothNodePermittivity(&coeffs_[i * 2 * nb_], basis, nb_, omega_ev_[i]);
+    }
+  }
+
+ private:
+  const SmoothModel& model_;
+  int nb_;
+  std::vector<double> coeffs_;    // per wavelength, 2 nb
+  std::vector<double> omega_ev_;  // per wavelength
+};
+
+}  // namespace
+
+std::unique_ptr<BoundModel> SmoothModel::Bind(const std::vector<double>& lambda_nm) const {
+  CheckLambda(lambda_nm);
+  return std::make_unique<BoundSmoothModel>(*this, lambda_nm);
+}
+
 std::vector<double> SmoothModel::FittedCoefficients() const {
   std::vector<double> all;
   for (const auto& node : coeffs_) all.insert(all.end(), node.begin(), node.end());

@@ -10,6 +10,7 @@
 #include "alloycolor/color/material_color.h"
 #include "alloycolor/core/composition.h"
 #include "alloycolor/core/error.h"
+#include "alloycolor/core/grid.h"
 #include "alloycolor/core/spectrum.h"
 #include "alloycolor/core/units.h"
 #include "alloycolor/model/optics.h"
@@ -19,8 +20,6 @@ namespace alloycolor::validate {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kVisibleLoNm = 380.0;
-constexpr double kVisibleHiNm = 780.0;
 constexpr double kMetricStepNm = 5.0;
 constexpr double kSameX = 1e-9;
 
@@ -44,9 +43,9 @@ std::vector<double> MetricGrid(const AlloyModel& model, const NkSpectrum& measur
                                std::string* description) {
   const double lo = std::max(model.lambda_min_nm(), measured.lambda_min_nm());
   const double hi = std::min(model.lambda_max_nm(), measured.lambda_max_nm());
-  if (lo <= kVisibleLoNm + 1e-9 && hi >= kVisibleHiNm - 1e-9) {
+  if (lo <= kVisibleMinNm + 1e-9 && hi >= kVisibleMaxNm - 1e-9) {
     *description = "380-780 nm, 5 nm step";
-    return UniformGrid(kVisibleLoNm, kVisibleHiNm, kMetricStepNm);
+    return UniformGrid(kVisibleMinNm, kVisibleMaxNm, kMetricStepNm);
   }
   std::vector<double> grid;
   for (double l : measured.lambda_nm) {
@@ -73,13 +72,13 @@ std::vector<std::complex<double>> MeasuredIndex(const NkSpectrum& nk,
 // `alloycolor predict` writes by default, integrated as `alloycolor color --nk` would.
 std::vector<std::complex<double>> PredictedColourIndex(const color::Colorimeter& colorimeter,
                                                        const AlloyModel& model, double x) {
-  if (model.lambda_min_nm() > kVisibleLoNm + 1e-9 || model.lambda_max_nm() < kVisibleHiNm - 1e-9) {
+  if (model.lambda_min_nm() > kVisibleMinNm + 1e-9 || model.lambda_max_nm() < kVisibleMaxNm - 1e-9) {
     // Throws the standard message naming the model's range.
     color::EvaluationGrid(colorimeter, model.lambda_min_nm(), model.lambda_max_nm(),
                            "the " + model.method() + " model");
   }
   const std::vector<double> grid =
-      color::EvaluationGrid(colorimeter, kVisibleLoNm, kVisibleHiNm, model.method());
+      color::EvaluationGrid(colorimeter, kVisibleMinNm, kVisibleMaxNm, model.method());
   return model.Index(x, grid);
 }
 
@@ -174,16 +173,15 @@ SplitResult PrepareSplit(const Dataset& dataset, const std::vector<double>& hold
   SplitResult split;
   split.holdout_x = holdout_x;
   std::sort(split.holdout_x.begin(), split.holdout_x.end());
-  double lo = -1e300, hi = 1e300;
-  for (const Sample& s : dataset.samples) {
-    const bool held = std::any_of(holdout_x.begin(), holdout_x.end(),
-                                  [&](double x) { return std::abs(x - s.x_atomic) <= kSameX; });
-    if (held) continue;
-    split.train_x.push_back(s.x_atomic);
-    lo = std::max(lo, s.nk.lambda_min_nm());
-    hi = std::min(hi, s.nk.lambda_max_nm());
+  const Dataset training = WithoutSamples(dataset, holdout_x);
+  for (const Sample& s : training.samples) split.train_x.push_back(s.x_atomic);
+  WavelengthRange range;
+  try {
+    range = CommonRange(training);
+  } catch (const Error&) {
+    return split;  // the methods say why they cannot be built
   }
-  if (!(lo < hi)) return split;
+  const double lo = range.lo_nm, hi = range.hi_nm;
   const double x_lo = dataset.samples.front().x_atomic;
   const double x_hi = dataset.samples.back().x_atomic;
   for (double lambda : DrudeWavelengths(lo, hi)) {

@@ -3,12 +3,11 @@
 // with everything that does not depend on the composition x done once.
 //
 // Exact evaluation. The wavelengths are the colorimeter's 5 nm grid held inside the model's
-// range (EvaluationGrid), the weights its normalised P(l) xbar(l) etc. For the smooth model
-// (smooth_model.h) its coefficients are interpolated to that grid once, so a composition
-// costs the Legendre basis and, per wavelength, two short dot products, two exp (gamma and
-// wp^2 of eq. 7), eq. 13-14 and eq. 2-4, with no allocation. Other models are evaluated
-// through AlloyModel::Permittivity. The result equals MaterialXYZ(IndexOnGrid(...)) to
-// rounding (|dXYZ| < 1e-12).
+// range (EvaluationGrid), the weights its normalised P(l) xbar(l) etc. The model is bound
+// to that grid once (AlloyModel::Bind), so a composition costs what the method needs to
+// evaluate eps there (for the smooth model, the Legendre basis and two dot products and two
+// exp per wavelength), then eq. 13-14 and eq. 2-4, with no allocation. The result equals
+// MaterialXYZ(IndexOnGrid(...)) to rounding (|dXYZ| < 1e-12).
 //
 // Table. For long sweeps, XYZ is tabulated against x at uniform nodes between breakpoints
 // (the ends of the sweep and the training compositions inside it, where the paper and
@@ -22,14 +21,11 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "alloycolor/model/alloy_model.h"
 #include "alloycolor/color/colorimetry.h"
-
-namespace alloycolor {
-class SmoothModel;
-}  // namespace alloycolor
 
 namespace alloycolor::color {
 
@@ -63,8 +59,6 @@ class ColorSweep {
     double x_lo, x_hi, step;
     std::vector<std::array<double, 3>> xyz;  // at x_lo + i * step, i = 0..intervals
   };
-  XYZ SmoothXYZ(double x_atomic) const;
-  XYZ GenericXYZ(double x_atomic) const;
   XYZ TableXYZ(double x_atomic) const;
   static XYZ Interpolate(const Segment& segment, double x_atomic);
   bool BuildSegment(double x_lo, double x_hi, int intervals, double tolerance, Segment* segment,
@@ -72,14 +66,11 @@ class ColorSweep {
 
   const Colorimeter& colorimeter_;
   const AlloyModel& model_;
-  const SmoothModel* smooth_ = nullptr;
+  std::unique_ptr<BoundModel> bound_;
   double cos_psi_ = 1.0;
   bool normal_ = true;
   std::vector<double> grid_nm_;  // colorimeter grid held inside the model's range
-  // Smooth model on the grid: per wavelength, 2 (degree + 1) coefficients and omega (eV).
-  int basis_size_ = 0;
-  std::vector<double> coeffs_;
-  std::vector<double> omega_ev_;
+  mutable std::vector<Complex<double>> eps_;  // scratch: eps on grid_nm_
   std::vector<Segment> segments_;
   double table_error_ = 0.0;
   int table_nodes_ = 0;

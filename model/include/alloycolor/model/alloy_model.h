@@ -75,6 +75,22 @@ struct TrainingSample {
   std::string checksum;
 };
 
+// A model bound to one wavelength grid: eps at any composition on that grid, with all that
+// does not depend on the composition done once when binding (AlloyModel::Bind), so that
+// sweeps over composition, colour tables and renderers evaluate many compositions fast and
+// without knowing the method. Equal to AlloyModel::Permittivity on the grid to rounding.
+class BoundModel {
+ public:
+  explicit BoundModel(std::vector<double> lambda_nm) : lambda_nm_(std::move(lambda_nm)) {}
+  virtual ~BoundModel() = default;
+  const std::vector<double>& lambda_nm() const { return lambda_nm_; }
+  // eps at x_atomic on lambda_nm(): eps must hold lambda_nm().size() values.
+  virtual void Permittivity(double x_atomic, Complex<double>* eps) const = 0;
+
+ private:
+  std::vector<double> lambda_nm_;
+};
+
 class AlloyModel {
  public:
   virtual ~AlloyModel() = default;
@@ -85,6 +101,10 @@ class AlloyModel {
   // outside [lambda_min_nm(), lambda_max_nm()]. Never returns NaN.
   virtual std::vector<std::complex<double>> Permittivity(
       double x_atomic, const std::vector<double>& lambda_nm) const = 0;
+
+  // The model bound to a grid inside its range (throws Error as Permittivity for one
+  // outside). The model must outlive the bound model.
+  virtual std::unique_ptr<BoundModel> Bind(const std::vector<double>& lambda_nm) const;
 
   // n + i k (eq. 13, 14 applied to Permittivity).
   std::vector<std::complex<double>> Index(double x_atomic,
@@ -162,11 +182,6 @@ std::unique_ptr<AlloyModel> ModelFromJson(const nlohmann::json& doc, const std::
 // The model file as text: pretty JSON with a final newline; the same model gives the
 // same bytes.
 std::string ModelFileText(const AlloyModel& model);
-
-// Default wavelength grid for fitting a data set: the range all samples cover, cut to
-// 360-830 nm when that leaves at least 380-780 nm, on a 5 nm step; otherwise (infrared
-// data) the common range in 100 steps.
-std::vector<double> DefaultGrid(const Dataset& dataset);
 
 }  // namespace alloycolor
 

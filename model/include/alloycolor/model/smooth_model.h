@@ -58,6 +58,9 @@ class SmoothModel : public AlloyModel {
   std::string method() const override { return "smooth"; }
   std::vector<std::complex<double>> Permittivity(
       double x_atomic, const std::vector<double>& lambda_nm) const override;
+  // Coefficients interpolated to the grid once: a composition then costs the Legendre
+  // basis and, per wavelength, two dot products and two exp.
+  std::unique_ptr<BoundModel> Bind(const std::vector<double>& lambda_nm) const override;
   bool HasUncertainty() const override { return !covariance_.empty(); }
   std::vector<std::vector<std::complex<double>>> PermittivityDraws(
       double x_atomic, const std::vector<double>& lambda_nm, int count = kUncertaintyDraws,

@@ -13,9 +13,7 @@ namespace alloycolor::app {
 namespace {
 
 struct ColorOptions {
-  std::string nk_file;
-  ModelSource source;
-  std::string x_text;
+  MaterialSource material;
   double angle_deg = 0.0;
   std::string illuminant = "D65";
   int observer = 2;
@@ -53,38 +51,29 @@ void Run(const ColorOptions& o) {
                            {"angle_deg", o.angle_deg},
                            {"integrated_nm",
                             {colorimeter.lambda_nm().front(), colorimeter.lambda_nm().back()}}};
-  if (!o.nk_file.empty()) {
-    if (!o.source.model_path.empty() || !o.source.data_dir.empty() || !o.x_text.empty()) {
-      throw Error("--nk takes no --model, --data or --x");
-    }
-    std::vector<std::string> warnings;
-    const NkSpectrum nk = ReadNkFile(o.nk_file, &warnings);
-    if (!o.quiet) {
-      for (const auto& w : warnings) Warn(w);
-    }
+  if (o.material.measured()) {
+    const NkSpectrum nk = o.material.LoadMeasured(o.quiet);
     const color::ColorResult c = color::ColorFromXYZ(
         colorimeter,
         color::MaterialXYZ(colorimeter, color::IndexOnGrid(colorimeter, nk), o.angle_deg));
     if (o.json) {
       nlohmann::json out = common;
-      out["source"] = o.nk_file;
+      out["source"] = o.material.nk_file;
       out.update(color::ColorJson(c));
       std::cout << out.dump(2) << "\n";
     } else {
-      PrintHeader(o.nk_file, o);
+      PrintHeader(o.material.nk_file, o);
       PrintRow("-", c, -1);
     }
     return;
   }
-  const auto model = o.source.Load(o.quiet);
-  if (o.x_text.empty()) throw Error("--x: give the composition(s), e.g. --x 0.75 or 18k");
-  const std::vector<double> xs = ParseCompositions(o.x_text, model->system());
+  const auto model = o.material.LoadModel(o.quiet);
+  const std::vector<double> xs = o.material.Compositions(*model, false);
   nlohmann::json results = nlohmann::json::array();
   if (!o.json) {
     PrintHeader(model->system().Name() + ", " + model->method() + " model", o);
   }
   for (double x : xs) {
-    CheckComposition(*model, x, o.source.extrapolate);
     const color::ColorResult c = color::ColorFromXYZ(
         colorimeter, color::MaterialXYZ(colorimeter,
                                          color::IndexOnGrid(colorimeter, *model, x),
@@ -126,12 +115,9 @@ void RegisterColor(CLI::App& app) {
       "model (--model). Spectral Fresnel reflectance integrated against the illuminant and "
       "observer; outputs XYZ (perfect reflector Y = 1), CIELAB (white = the illuminant's), "
       "linear and 8-bit sRGB (IEC 61966-2-1, no chromatic adaptation) and the paper's RGB.");
-  cmd->add_option("--nk", o->nk_file,
-                  "Optical constants: refractiveindex.info YAML or CSV (lambda_nm,n,k)");
-  o->source.AddOptions(cmd, true);
-  cmd->add_option("--x", o->x_text,
-                  "Composition(s) of the system's first element, comma-separated: 0.75, "
-                  "75at%, 75wt%, 18k");
+  o->material.AddOptions(cmd,
+                         "Composition(s) of the system's first element, comma-separated: 0.75, "
+                         "75at%, 75wt%, 18k");
   cmd->add_option("--angle", o->angle_deg, "Angle of incidence in degrees (0-90)")
       ->capture_default_str();
   AddColorimetryOptions(cmd, &o->illuminant, &o->observer);

@@ -21,9 +21,7 @@ namespace alloycolor::app {
 namespace {
 
 struct ExportOptions {
-  std::string nk_file;
-  ModelSource source;
-  std::string x_text;
+  MaterialSource material;
   std::string format = "spd";
   std::string out;
   std::string scene_dir;
@@ -85,36 +83,22 @@ void Run(const ExportOptions& o) {
   exports::ConductorSpectra spectra;
   std::vector<std::complex<double>> index;  // on d65's grid: the spectral truth
   std::string id;
-  if (!o.nk_file.empty()) {
-    if (!o.source.model_path.empty() || !o.source.data_dir.empty() || !o.x_text.empty()) {
-      throw Error("--nk takes no --model, --data or --x");
-    }
-    std::vector<std::string> warnings;
-    const NkSpectrum nk = ReadNkFile(o.nk_file, &warnings);
-    if (!o.quiet) {
-      for (const auto& w : warnings) Warn(w);
-    }
-    spectra = exports::MeasuredSpectra(nk, "measured n, k from " + o.nk_file);
+  if (o.material.measured()) {
+    const NkSpectrum nk = o.material.LoadMeasured(o.quiet);
+    spectra = exports::MeasuredSpectra(nk, "measured n, k from " + o.material.nk_file);
     index = color::IndexOnGrid(d65, nk);
-    std::string stem = o.nk_file.substr(o.nk_file.find_last_of('/') + 1);
+    std::string stem = o.material.nk_file.substr(o.material.nk_file.find_last_of('/') + 1);
     id = Identifier(stem.substr(0, stem.find_last_of('.')));
   } else {
-    if (o.source.model_path.empty() && o.source.data_dir.empty()) {
-      throw Error("give --nk FILE, or --model FILE (or --data DIR) with --x");
-    }
-    if (o.x_text.empty()) throw Error("--x: give the composition, e.g. --x 0.75 or 18k");
-    const auto model = o.source.Load(o.quiet);
-    const std::vector<double> xs = ParseCompositions(o.x_text, model->system());
-    if (xs.size() != 1) throw Error("--x: export takes one composition, not " + o.x_text);
-    const double x = xs[0];
-    CheckComposition(*model, x, o.source.extrapolate);
+    const auto model = o.material.LoadModel(o.quiet);
+    const double x = o.material.Compositions(*model, true)[0];
     const AlloySystem& system = model->system();
     const std::string material =
         system.Name() + " at x = " + Format("%.6g", x) + " (atomic fraction of " + system.a.symbol +
         "; " + Format("%.4g", 100.0 * WeightFromAtomicFraction(x, system)) + " wt% " +
         system.a.symbol + "), " + model->method() + " model " +
-        (o.source.model_path.empty() ? "built from data " + o.source.data_dir
-                                     : "from " + o.source.model_path);
+        (o.material.source.model_path.empty() ? "built from data " + o.material.source.data_dir
+                                     : "from " + o.material.source.model_path);
     spectra = exports::ModelSpectra(*model, x, material);
     index = color::IndexOnGrid(d65, *model, x);
     id = Identifier(system.Name() + "_x" + Format("%.6g", x));
@@ -228,11 +212,7 @@ void RegisterExport(CLI::App& app) {
       "materialx (PREFIX.mtlx, conductor_bsdf), gltf (PREFIX.gltf), all (every file). Each "
       "approximation's largest CIEDE2000 difference from the spectral colour over 0-85 "
       "degrees is printed on stderr (and with --json on stdout).");
-  cmd->add_option("--nk", o->nk_file,
-                  "Optical constants: refractiveindex.info YAML or CSV (lambda_nm,n,k)");
-  o->source.AddOptions(cmd, true);
-  cmd->add_option("--x", o->x_text,
-                  "Composition of the system's first element: 0.75, 75at%, 75wt%, 18k");
+  o->material.AddOptions(cmd, "Composition of the system's first element: 0.75, 75at%, 75wt%, 18k");
   cmd->add_option("--format", o->format,
                   "spd, rgb-conductor, f82, gulbrandsen, materialx, gltf or all")
       ->capture_default_str();

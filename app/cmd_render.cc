@@ -25,9 +25,7 @@ constexpr double kTableErrorLimit = 1e-4;
 constexpr int kMaxTableSize = 65537;
 
 struct RenderCommandOptions {
-  std::string nk_file;
-  ModelSource source;
-  std::string x_text;
+  MaterialSource material;
   std::string shape = "sphere";
   int size = 512;
   std::string light = "studio";
@@ -99,34 +97,21 @@ std::vector<Material> LoadMaterials(const RenderCommandOptions& o,
                                     const color::Colorimeter& colorimeter,
                                     std::string* description) {
   std::vector<Material> materials;
-  if (!o.nk_file.empty()) {
-    if (!o.source.model_path.empty() || !o.source.data_dir.empty() || !o.x_text.empty()) {
-      throw Error("--nk takes no --model, --data or --x");
-    }
-    std::vector<std::string> warnings;
-    const NkSpectrum nk = ReadNkFile(o.nk_file, &warnings);
-    if (!o.quiet) {
-      for (const auto& w : warnings) Warn(w);
-    }
-    materials.push_back({o.nk_file, color::IndexOnGrid(colorimeter, nk)});
-    *description = "measured n, k from " + o.nk_file;
+  if (o.material.measured()) {
+    const NkSpectrum nk = o.material.LoadMeasured(o.quiet);
+    materials.push_back({o.material.nk_file, color::IndexOnGrid(colorimeter, nk)});
+    *description = "measured n, k from " + o.material.nk_file;
     return materials;
   }
-  if (o.source.model_path.empty() && o.source.data_dir.empty()) {
-    throw Error("give --nk FILE, or --model FILE (or --data DIR) with --x");
-  }
-  if (o.x_text.empty()) throw Error("--x: give the composition(s), e.g. --x 0.75 or 0.55,0.75");
-  const auto model = o.source.Load(o.quiet);
-  const std::vector<double> xs = ParseCompositions(o.x_text, model->system());
-  for (double x : xs) {
-    CheckComposition(*model, x, o.source.extrapolate);
+  const auto model = o.material.LoadModel(o.quiet);
+  for (double x : o.material.Compositions(*model, false)) {
     materials.push_back({model->system().Name() + " x=" + Format("%.4g", x),
                          color::IndexOnGrid(colorimeter, *model, x)});
   }
   *description = model->system().Name() + ", " + model->method() + " model" +
-                 (o.source.model_path.empty() ? " from data " + o.source.data_dir
-                                              : " from " + o.source.model_path) +
-                 "; x = atomic fraction of " + model->system().a.symbol + ": " + o.x_text;
+                 (o.material.source.model_path.empty() ? " from data " + o.material.source.data_dir
+                                              : " from " + o.material.source.model_path) +
+                 "; x = atomic fraction of " + model->system().a.symbol + ": " + o.material.x_text;
   return materials;
 }
 
@@ -230,12 +215,10 @@ void RegisterRender(CLI::App& app) {
       "each pixel exactly the colour of R(angle) (sphere: centre at normal incidence, rim "
       "toward white). --light studio: a product-shot set (soft key and fill lights, "
       "gradient backdrop), with GGX microfacet roughness.");
-  cmd->add_option("--nk", o->nk_file,
-                  "Optical constants: refractiveindex.info YAML or CSV (lambda_nm,n,k)");
-  o->source.AddOptions(cmd, true);
-  cmd->add_option("--x,--xs", o->x_text,
-                  "Composition(s) of the system's first element, comma-separated (0.55,0.75; "
-                  "75wt%; 18k): one tile each, left to right");
+  o->material.AddOptions(cmd,
+                         "Composition(s) of the system's first element, comma-separated "
+                         "(0.55,0.75; 75wt%; 18k): one tile each, left to right",
+                         "--x,--xs");
   cmd->add_option("--shape", o->shape, "sphere or ring")->capture_default_str();
   cmd->add_option("--size", o->size, "Tile width and height in pixels (1-4096)")
       ->capture_default_str();

@@ -146,6 +146,41 @@ std::unique_ptr<AlloyModel> ModelSource::Load(bool quiet) const {
   throw Error("give --model FILE or --data DIR");
 }
 
+void MaterialSource::AddOptions(CLI::App* cmd, const std::string& x_help,
+                                const std::string& x_names) {
+  cmd->add_option("--nk", nk_file,
+                  "Measured optical constants: refractiveindex.info YAML or CSV (lambda_nm,n,k)");
+  source.AddOptions(cmd, true);
+  cmd->add_option(x_names, x_text, x_help);
+}
+
+NkSpectrum MaterialSource::LoadMeasured(bool quiet) const {
+  if (!source.model_path.empty() || !source.data_dir.empty() || !x_text.empty()) {
+    throw Error("--nk takes no --model, --data or --x");
+  }
+  std::vector<std::string> warnings;
+  NkSpectrum nk = ReadNkFile(nk_file, &warnings);
+  if (!quiet) {
+    for (const auto& w : warnings) Warn(w);
+  }
+  return nk;
+}
+
+std::unique_ptr<AlloyModel> MaterialSource::LoadModel(bool quiet) const {
+  if (source.model_path.empty() && source.data_dir.empty()) {
+    throw Error("give --nk FILE, or --model FILE (or --data DIR) with --x");
+  }
+  if (x_text.empty()) throw Error("--x: give the composition(s), e.g. --x 0.75 or 18k");
+  return source.Load(quiet);
+}
+
+std::vector<double> MaterialSource::Compositions(const AlloyModel& model, bool single) const {
+  const std::vector<double> xs = ParseCompositions(x_text, model.system());
+  if (single && xs.size() != 1) throw Error("--x: give one composition, not " + x_text);
+  for (double x : xs) CheckComposition(model, x, source.extrapolate);
+  return xs;
+}
+
 void AddColorimetryOptions(CLI::App* cmd, std::string* illuminant, int* observer) {
   cmd->add_option("--illuminant", *illuminant, "CIE illuminant: A, C, D50, D65, E, F2, F11")
       ->capture_default_str();

@@ -12,6 +12,7 @@
 #include "alloycolor/model/alloy_model.h"
 #include "alloycolor/core/dataset.h"
 #include "alloycolor/core/progress.h"
+#include "alloycolor/core/spectrum.h"
 #include "alloycolor/color/colorimetry.h"
 
 namespace alloycolor::app {
@@ -54,6 +55,24 @@ struct ModelSource {
   void AddOptions(CLI::App* cmd, bool with_data);
   // Loads or builds the model; throws Error when neither or both are given.
   std::unique_ptr<AlloyModel> Load(bool quiet) const;
+};
+
+// Where the material comes from, for commands that take a measured metal or an alloy:
+// --nk FILE alone, or --model FILE / --data DIR (+ --method) with --x compositions.
+struct MaterialSource {
+  std::string nk_file;
+  ModelSource source;
+  std::string x_text;
+  void AddOptions(CLI::App* cmd, const std::string& x_help,
+                  const std::string& x_names = "--x");
+  bool measured() const { return !nk_file.empty(); }
+  // The --nk spectrum (its repairs queued as warnings unless quiet); throws Error when
+  // --model, --data or --x are given too.
+  NkSpectrum LoadMeasured(bool quiet) const;
+  // The model of --model or --data; throws Error naming what is missing.
+  std::unique_ptr<AlloyModel> LoadModel(bool quiet) const;
+  // The --x compositions, each checked against the model's range; `single`: exactly one.
+  std::vector<double> Compositions(const AlloyModel& model, bool single) const;
 };
 
 // --illuminant and --observer, the same on every command that computes colour.

@@ -98,7 +98,7 @@ FitData PrepareData(const Dataset& dataset, const PhysicalFitOptions& options) {
 
 struct Basis {
   double x_lo, x_hi;
-  double U(double x) const { return 2.0 * (x - x_lo) / (x_hi - x_lo) - 1.0; }
+  double U(double x) const { return CompositionArgument(x, x_lo, x_hi); }
 };
 
 // Upper limit of a positive parameter's constant coefficient.

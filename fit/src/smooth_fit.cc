@@ -85,7 +85,7 @@ std::vector<char> AllSamples(const GridData& g) { return std::vector<char>(g.x.s
 
 struct Basis {
   double x_lo, x_hi;
-  double U(double x) const { return 2.0 * (x - x_lo) / (x_hi - x_lo) - 1.0; }
+  double U(double x) const { return CompositionArgument(x, x_lo, x_hi); }
 };
 
 // Least-squares start from the pointwise inversion; nodes with no usable sample copy the

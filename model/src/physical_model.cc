@@ -261,7 +261,7 @@ void PhysicalModel::Validate(const std::string& source) const {
 }
 
 double PhysicalModel::BasisArgument(double x_atomic) const {
-  return 2.0 * (x_atomic - x_min()) / (x_max() - x_min()) - 1.0;
+  return CompositionArgument(x_atomic, x_min(), x_max());
 }
 
 void PhysicalModel::AddWarnings(const std::vector<std::string>& warnings) {

@@ -161,7 +161,7 @@ std::vector<double> SmoothModel::FittedCoefficients() const {
 }
 
 double SmoothModel::BasisArgument(double x_atomic) const {
-  return 2.0 * (x_atomic - x_min()) / (x_max() - x_min()) - 1.0;
+  return CompositionArgument(x_atomic, x_min(), x_max());
 }
 
 void SmoothModel::AddWarnings(const std::vector<std::string>& warnings) {

@@ -23,6 +23,12 @@ namespace alloycolor {
 
 inline constexpr int kSmoothMaxDegree = 8;
 
+// The argument of the Legendre polynomials for composition x over the training range
+// [x_lo, x_hi]: u = 2 (x - x_lo) / (x_hi - x_lo) - 1, so u runs over [-1, 1].
+inline double CompositionArgument(double x, double x_lo, double x_hi) {
+  return 2.0 * (x - x_lo) / (x_hi - x_lo) - 1.0;
+}
+
 // P_0..P_degree at u (Bonnet's recursion).
 inline void LegendreBasis(double u, int degree, double* p) {
   p[0] = 1.0;

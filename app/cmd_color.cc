@@ -13,7 +13,7 @@ namespace alloycolor::app {
 namespace {
 
 struct ColorOptions {
-  std::string nk_file;
+  NkFileOption nk;
   ModelSource source;
   std::string x_text;
   double angle_deg = 0.0;
@@ -53,12 +53,13 @@ void Run(const ColorOptions& o) {
                            {"angle_deg", o.angle_deg},
                            {"integrated_nm",
                             {colorimeter.lambda_nm().front(), colorimeter.lambda_nm().back()}}};
-  if (!o.nk_file.empty()) {
+  o.nk.Validate();
+  if (!o.nk.file.empty()) {
     if (!o.source.model_path.empty() || !o.source.data_dir.empty() || !o.x_text.empty()) {
       throw Error("--nk takes no --model, --data or --x");
     }
     std::vector<std::string> warnings;
-    const NkSpectrum nk = ReadNkFile(o.nk_file, &warnings);
+    const NkSpectrum nk = o.nk.Read(&warnings);
     if (!o.quiet) {
       for (const auto& w : warnings) Warn(w);
     }
@@ -67,11 +68,11 @@ void Run(const ColorOptions& o) {
         color::MaterialXYZ(colorimeter, color::IndexOnGrid(colorimeter, nk), o.angle_deg));
     if (o.json) {
       nlohmann::json out = common;
-      out["source"] = o.nk_file;
+      out["source"] = o.nk.file;
       out.update(color::ColorJson(c));
       std::cout << out.dump(2) << "\n";
     } else {
-      PrintHeader(o.nk_file, o);
+      PrintHeader(o.nk.file, o);
       PrintRow("-", c, -1);
     }
     return;
@@ -126,8 +127,7 @@ void RegisterColor(CLI::App& app) {
       "model (--model). Spectral Fresnel reflectance integrated against the illuminant and "
       "observer; outputs XYZ (perfect reflector Y = 1), CIELAB (white = the illuminant's), "
       "linear and 8-bit sRGB (IEC 61966-2-1, no chromatic adaptation) and the paper's RGB.");
-  cmd->add_option("--nk", o->nk_file,
-                  "Optical constants: refractiveindex.info YAML or CSV (lambda_nm,n,k)");
+  o->nk.AddOptions(cmd);
   o->source.AddOptions(cmd, true);
   cmd->add_option("--x", o->x_text,
                   "Composition(s) of the system's first element, comma-separated: 0.75, "

@@ -21,7 +21,7 @@ namespace alloycolor::app {
 namespace {
 
 struct ExportOptions {
-  std::string nk_file;
+  NkFileOption nk;
   ModelSource source;
   std::string x_text;
   std::string format = "spd";
@@ -85,18 +85,19 @@ void Run(const ExportOptions& o) {
   exports::ConductorSpectra spectra;
   std::vector<std::complex<double>> index;  // on d65's grid: the spectral truth
   std::string id;
-  if (!o.nk_file.empty()) {
+  o.nk.Validate();
+  if (!o.nk.file.empty()) {
     if (!o.source.model_path.empty() || !o.source.data_dir.empty() || !o.x_text.empty()) {
       throw Error("--nk takes no --model, --data or --x");
     }
     std::vector<std::string> warnings;
-    const NkSpectrum nk = ReadNkFile(o.nk_file, &warnings);
+    const NkSpectrum nk = o.nk.Read(&warnings);
     if (!o.quiet) {
       for (const auto& w : warnings) Warn(w);
     }
-    spectra = exports::MeasuredSpectra(nk, "measured n, k from " + o.nk_file);
+    spectra = exports::MeasuredSpectra(nk, "measured n, k from " + o.nk.file);
     index = color::IndexOnGrid(d65, nk);
-    std::string stem = o.nk_file.substr(o.nk_file.find_last_of('/') + 1);
+    std::string stem = o.nk.file.substr(o.nk.file.find_last_of('/') + 1);
     id = Identifier(stem.substr(0, stem.find_last_of('.')));
   } else {
     if (o.source.model_path.empty() && o.source.data_dir.empty()) {
@@ -228,8 +229,7 @@ void RegisterExport(CLI::App& app) {
       "materialx (PREFIX.mtlx, conductor_bsdf), gltf (PREFIX.gltf), all (every file). Each "
       "approximation's largest CIEDE2000 difference from the spectral colour over 0-85 "
       "degrees is printed on stderr (and with --json on stdout).");
-  cmd->add_option("--nk", o->nk_file,
-                  "Optical constants: refractiveindex.info YAML or CSV (lambda_nm,n,k)");
+  o->nk.AddOptions(cmd);
   o->source.AddOptions(cmd, true);
   cmd->add_option("--x", o->x_text,
                   "Composition of the system's first element: 0.75, 75at%, 75wt%, 18k");

@@ -25,7 +25,7 @@ constexpr double kTableErrorLimit = 1e-4;
 constexpr int kMaxTableSize = 65537;
 
 struct RenderCommandOptions {
-  std::string nk_file;
+  NkFileOption nk;
   ModelSource source;
   std::string x_text;
   std::string shape = "sphere";
@@ -99,17 +99,18 @@ std::vector<Material> LoadMaterials(const RenderCommandOptions& o,
                                     const color::Colorimeter& colorimeter,
                                     std::string* description) {
   std::vector<Material> materials;
-  if (!o.nk_file.empty()) {
+  o.nk.Validate();
+  if (!o.nk.file.empty()) {
     if (!o.source.model_path.empty() || !o.source.data_dir.empty() || !o.x_text.empty()) {
       throw Error("--nk takes no --model, --data or --x");
     }
     std::vector<std::string> warnings;
-    const NkSpectrum nk = ReadNkFile(o.nk_file, &warnings);
+    const NkSpectrum nk = o.nk.Read(&warnings);
     if (!o.quiet) {
       for (const auto& w : warnings) Warn(w);
     }
-    materials.push_back({o.nk_file, color::IndexOnGrid(colorimeter, nk)});
-    *description = "measured n, k from " + o.nk_file;
+    materials.push_back({o.nk.file, color::IndexOnGrid(colorimeter, nk)});
+    *description = "measured n, k from " + o.nk.file;
     return materials;
   }
   if (o.source.model_path.empty() && o.source.data_dir.empty()) {
@@ -230,8 +231,7 @@ void RegisterRender(CLI::App& app) {
       "each pixel exactly the colour of R(angle) (sphere: centre at normal incidence, rim "
       "toward white). --light studio: a product-shot set (soft key and fill lights, "
       "gradient backdrop), with GGX microfacet roughness.");
-  cmd->add_option("--nk", o->nk_file,
-                  "Optical constants: refractiveindex.info YAML or CSV (lambda_nm,n,k)");
+  o->nk.AddOptions(cmd);
   o->source.AddOptions(cmd, true);
   cmd->add_option("--x,--xs", o->x_text,
                   "Composition(s) of the system's first element, comma-separated (0.55,0.75; "

@@ -146,6 +146,26 @@ std::unique_ptr<AlloyModel> ModelSource::Load(bool quiet) const {
   throw Error("give --model FILE or --data DIR");
 }
 
+void NkFileOption::AddOptions(CLI::App* cmd) {
+  cmd->add_option("--nk", file,
+                  "Optical constants: refractiveindex.info YAML, or delimited text (.csv, .txt, "
+                  ".dat, .tsv; comma, semicolon, tab or whitespace) with a header naming the "
+                  "abscissa and its unit (wavelength in nm, um or A, energy in eV, wavenumber "
+                  "in cm-1) and n,k or eps1,eps2 columns");
+  cmd->add_option("--columns", columns,
+                  "For a --nk text file holding several samples: the n and k (or eps1 and eps2) "
+                  "columns to read, as N,K by header name or 1-based column number, e.g. "
+                  "n6,k6 or 2,3");
+}
+
+void NkFileOption::Validate() const {
+  if (file.empty() && !columns.empty()) throw Error("--columns applies to --nk FILE only");
+}
+
+NkSpectrum NkFileOption::Read(std::vector<std::string>* warnings) const {
+  return ReadNkFile(file, columns.empty() ? NkColumns{} : ParseNkColumns(columns), warnings);
+}
+
 void AddColorimetryOptions(CLI::App* cmd, std::string* illuminant, int* observer) {
   cmd->add_option("--illuminant", *illuminant, "CIE illuminant: A, C, D50, D65, E, F2, F11")
       ->capture_default_str();

@@ -59,6 +59,16 @@ struct ModelSource {
 // --illuminant and --observer, the same on every command that computes colour.
 void AddColorimetryOptions(CLI::App* cmd, std::string* illuminant, int* observer);
 
+// --nk FILE and --columns N,K: a measured n, k file and, for a delimited file holding
+// several samples, the columns to read.
+struct NkFileOption {
+  std::string file;
+  std::string columns;
+  void AddOptions(CLI::App* cmd);
+  void Validate() const;  // --columns needs --nk
+  NkSpectrum Read(std::vector<std::string>* warnings) const;
+};
+
 // Refuses an output path whose folder does not exist, before any work is done.
 void CheckOutputFolder(const std::string& path, const std::string& option);
 

@@ -134,7 +134,7 @@ std::vector<Layout> Layouts() {
       {"BOM, CRLF, comments, title lines",
        "j.csv",
        "\xEF\xBB\xBF# exported by a spectrometer\r\nAu50Ag50 film, sample 3\r\n"
-       "Measured 2024-05-01\r\n# header follows\r\nWavelength (nm),n,k\r\n",
+       "Measured 2024-05-01\r\nInfo,2024\r\n# header follows\r\nWavelength (nm),n,k\r\n",
        nm(",", "\r\n"),
        false,
        {}},
@@ -154,6 +154,17 @@ std::vector<Layout> Layouts() {
        false,
        {}},
   };
+  // A European spreadsheet: semicolons and decimal commas, a German header.
+  layouts.push_back({"decimal comma",
+                     "p.csv",
+                     "Wellenl\xC3\xA4nge (nm);n;k\n",
+                     [](double l, double n, double k) {
+                       std::string row = G(l) + ";" + G(n) + ";" + G(k) + "\n";
+                       for (char& c : row) c = c == '.' ? ',' : c;
+                       return row;
+                     },
+                     false,
+                     {}});
   // The ellipsometer export: two title lines, several samples' n,k pairs, CRLF, a
   // trailing comma on every line; the reference is sample 12, chosen by name or number.
   const RowText multi = [](double l, double n, double k) {

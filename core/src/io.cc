@@ -74,16 +74,18 @@ struct Columns {
   }
 };
 
+// "nan", "inf", "infinity" with an optional sign: numbers, but not finite ones.
+bool IsNonFiniteWord(std::string_view field) {
+  if (!field.empty() && (field.front() == '+' || field.front() == '-')) field.remove_prefix(1);
+  const std::string lower = Lower(field);
+  return lower == "nan" || lower == "inf" || lower == "infinity";
+}
+
 // A field as a finite number; the message tells a non-number from a non-finite one.
 double ParseField(std::string_view field, const std::string& name, const std::string& at) {
   double value = 0;
   if (ParseFiniteDouble(field, &value)) return value;
-  std::string_view bare = field;
-  if (!bare.empty() && (bare.front() == '+' || bare.front() == '-')) bare.remove_prefix(1);
-  const std::string lower = Lower(bare);
-  if (lower == "nan" || lower == "inf" || lower == "infinity") {
-    Fail(at + name + " is " + Quote(field) + ", not a finite number");
-  }
+  if (IsNonFiniteWord(field)) Fail(at + name + " is " + Quote(field) + ", not a finite number");
   Fail(at + "cannot parse number " + Quote(field) + " (" + name + ")");
 }
 
@@ -543,17 +545,22 @@ AbscissaName ClassifyAbscissa(std::string_view name) {
     Unit unit = Unit::kNm;
     Quantity implied = Quantity::kNone;
     if (OneOf(t, {"nm", "nanometer", "nanometers", "nanometre", "nanometres"})) {
-      unit = Unit::kNm, implied = Quantity::kWavelength;
+      unit = Unit::kNm;
+      implied = Quantity::kWavelength;
     } else if (OneOf(t, {"um", "mum", "micron", "microns", "micrometer", "micrometers",
                          "micrometre", "micrometres"})) {
-      unit = Unit::kUm, implied = Quantity::kWavelength;
+      unit = Unit::kUm;
+      implied = Quantity::kWavelength;
     } else if (OneOf(t, {"angstrom", "angstroms", "ang", "aa"}) ||
                (t == "a" && quantity == Quantity::kWavelength)) {
-      unit = Unit::kAngstrom, implied = Quantity::kWavelength;
+      unit = Unit::kAngstrom;
+      implied = Quantity::kWavelength;
     } else if (t == "ev") {
-      unit = Unit::kEv, implied = Quantity::kEnergy;
+      unit = Unit::kEv;
+      implied = Quantity::kEnergy;
     } else if (cm_minus_1 || OneOf(t, {"cm1", "kayser"})) {
-      unit = Unit::kWavenumber, implied = Quantity::kWavenumber;
+      unit = Unit::kWavenumber;
+      implied = Quantity::kWavenumber;
       if (cm_minus_1) ++i;
     } else {
       others.push_back(t);
@@ -679,14 +686,24 @@ std::string DelimiterName(char delimiter) {
   return "whitespace";
 }
 
+// A field with a decimal comma ("0,5", "-1,25e-3") written with '.'; other fields as they
+// are. Only applied where the delimiter is not a comma, so the comma cannot be one.
+std::string DecimalPoint(std::string_view field, char delimiter) {
+  std::string text(field);
+  if (delimiter == ',' || text.find('.') != std::string::npos) return text;
+  static const std::regex kDecimalComma("[+-]?[0-9]+,[0-9]+([eE][+-]?[0-9]+)?");
+  if (std::regex_match(text, kDecimalComma)) text[text.find(',')] = '.';
+  return text;
+}
+
 // True when the line is at least two numbers and nothing else.
 bool IsNumberRow(std::string_view line) {
-  const std::vector<std::string_view> fields = SplitFields(line, DelimiterOf(line));
+  const char delimiter = DelimiterOf(line);
+  const std::vector<std::string_view> fields = SplitFields(line, delimiter);
   if (fields.size() < 2) return false;
   double value = 0;
   for (std::string_view field : fields) {
-    if (!ParseFiniteDouble(field, &value) && Lower(field) != "nan" &&
-        Lower(field).find("inf") == std::string::npos) {
+    if (!ParseFiniteDouble(DecimalPoint(field, delimiter), &value) && !IsNonFiniteWord(field)) {
       return false;
     }
   }
@@ -933,12 +950,13 @@ NkSpectrum ParseDelimited(const std::string& path, std::string_view text, const 
     Row row;
     row.line = line;
     row.index = ++index;
-    row.lambda = ParseField(fields[layout.abscissa], unit_name, at);
+    const auto field = [&](std::size_t column) { return DecimalPoint(fields[column], delimiter); };
+    row.lambda = ParseField(field(layout.abscissa), unit_name, at);
     if (!(row.lambda > 0)) {
       Fail(at + unit_name + " = " + FormatNumber(row.lambda) + " is not positive");
     }
-    const double a = ParseField(fields[layout.value[0]], n_name, at);
-    const double b = ParseField(fields[layout.value[1]], k_name, at);
+    const double a = ParseField(field(layout.value[0]), n_name, at);
+    const double b = ParseField(field(layout.value[1]), k_name, at);
     if (layout.eps) {
       if (b < 0) {
         Fail(at + k_name + " = " + FormatNumber(b) +

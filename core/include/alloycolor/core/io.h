@@ -6,7 +6,8 @@
 //    types (`formula N`, `tabulated n2`) are refused with a message naming them.
 //  - delimited text (.csv, .txt, .dat, .tsv) as labs and instruments export it:
 //    comma, semicolon, tab or whitespace between fields (the delimiter of the first row of
-//    numbers); a UTF-8 byte order mark; CRLF line ends; trailing delimiters; lines starting
+//    numbers; where it is not a comma, "0,5" is read as a decimal comma); a UTF-8 byte
+//    order mark; CRLF line ends; trailing delimiters; lines starting
 //    with '#' are comments; title lines may precede the header. The header is the line
 //    just above the first row of numbers (a '#' comment there counts when it names the
 //    columns). Its first named column is the abscissa with its unit, in the usual

@@ -149,7 +149,14 @@ std::unique_ptr<AlloyModel> ModelSource::Load(bool quiet) const {
 void MaterialSource::AddOptions(CLI::App* cmd, const std::string& x_help,
                                 const std::string& x_names) {
   cmd->add_option("--nk", nk_file,
-                  "Measured optical constants: refractiveindex.info YAML or CSV (lambda_nm,n,k)");
+                  "Measured optical constants: refractiveindex.info YAML, or delimited text "
+                  "(.csv, .txt, .dat, .tsv; comma, semicolon, tab or whitespace) with a header "
+                  "naming the abscissa and its unit (wavelength in nm, um or A, energy in eV, "
+                  "wavenumber in cm-1) and n,k or eps1,eps2 columns");
+  cmd->add_option("--columns", columns,
+                  "For a --nk text file holding several samples: the n and k (or eps1 and eps2) "
+                  "columns to read, as N,K by header name or 1-based column number, e.g. "
+                  "n6,k6 or 2,3");
   source.AddOptions(cmd, true);
   cmd->add_option(x_names, x_text, x_help);
 }
@@ -159,7 +166,8 @@ NkSpectrum MaterialSource::LoadMeasured(bool quiet) const {
     throw Error("--nk takes no --model, --data or --x");
   }
   std::vector<std::string> warnings;
-  NkSpectrum nk = ReadNkFile(nk_file, &warnings);
+  NkSpectrum nk =
+      ReadNkFile(nk_file, columns.empty() ? NkColumns{} : ParseNkColumns(columns), &warnings);
   if (!quiet) {
     for (const auto& w : warnings) Warn(w);
   }
@@ -167,6 +175,7 @@ NkSpectrum MaterialSource::LoadMeasured(bool quiet) const {
 }
 
 std::unique_ptr<AlloyModel> MaterialSource::LoadModel(bool quiet) const {
+  if (!columns.empty()) throw Error("--columns applies to --nk FILE only");
   if (source.model_path.empty() && source.data_dir.empty()) {
     throw Error("give --nk FILE, or --model FILE (or --data DIR) with --x");
   }

@@ -58,9 +58,11 @@ struct ModelSource {
 };
 
 // Where the material comes from, for commands that take a measured metal or an alloy:
-// --nk FILE alone, or --model FILE / --data DIR (+ --method) with --x compositions.
+// --nk FILE alone (with --columns N,K for a file holding several samples), or --model FILE
+// / --data DIR (+ --method) with --x compositions.
 struct MaterialSource {
   std::string nk_file;
+  std::string columns;  // --columns N,K: which columns of a multi-sample text file
   ModelSource source;
   std::string x_text;
   void AddOptions(CLI::App* cmd, const std::string& x_help,

@@ -110,8 +110,8 @@ TEST_F(BadInput, OpticalConstantFiles) {
   ExpectCleanError({"color", "--nk", File("word.csv", "lambda_nm,n,k\n400,1,2\n500,abc,2\n")},
                    {"word.csv", ":3", "abc"});
   ExpectCleanError({"color", "--nk", File("one.csv", "lambda_nm,n,k\n400,1,2\n")}, {"one.csv"});
-  ExpectCleanError({"color", "--nk", File("order.csv", "lambda_nm,n,k\n500,1,2\n400,1,2\n")},
-                   {"order.csv", ":3"});
+  ExpectCleanError({"color", "--nk", File("order.csv", "lambda_nm,n,k\n500,1,2\n400,1,2\n450,1,2\n")},
+                   {"order.csv", ":4"});
   ExpectCleanError({"color", "--nk", File("negk.csv", "lambda_nm,n,k\n400,1,2\n500,1,-2\n")},
                    {"negk.csv", ":3"});
   ExpectCleanError({"color", "--nk", File("nan.csv", "lambda_nm,n,k\n400,1,2\n500,nan,2\n")},

@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "alloycolor/core/error.h"
 
@@ -131,6 +133,105 @@ TEST(FreeElectronDensityTest, ZenLawByHand) {
   // Cu-Zn: Z mixes linearly too; pure zinc has Z = 2 (A&M: 13.2e22 cm^-3).
   EXPECT_NEAR(FreeElectronDensityM3(0.0, System("Cu", "Zn")), 13.2e28, 0.01 * 13.2e28);
   EXPECT_THROW(FreeElectronDensityM3(1.1, System("Cu", "Zn")), Error);
+}
+
+}  // namespace
+}  // namespace alloycolor
+
+namespace alloycolor {
+namespace {
+
+// Further metals, each with its standard atomic weight typed here from the CIAAW 2021
+// table (conventional values for interval elements), independently of the library's table.
+struct MetalMass {
+  const char* symbol;
+  double mass;
+};
+constexpr MetalMass kFurtherMetals[] = {
+    {"Li", 6.94},      {"Be", 9.0121831}, {"Na", 22.98976928}, {"K", 39.0983},    {"Ca", 40.078},
+    {"Sc", 44.955907}, {"Ti", 47.867},    {"V", 50.9415},      {"Cr", 51.9961},   {"Mn", 54.938043},
+    {"Co", 58.933194}, {"Ni", 58.6934},   {"Ge", 72.630},      {"Sr", 87.62},     {"Y", 88.905838},
+    {"Zr", 91.224},    {"Mo", 95.95},     {"Ru", 101.07},      {"Rh", 102.90549}, {"Pd", 106.42},
+    {"Cd", 112.414},   {"Sb", 121.760},   {"Ba", 137.327},     {"La", 138.90547}, {"Ce", 140.116},
+    {"Nd", 144.242},   {"Gd", 157.25},    {"Hf", 178.486},     {"Ta", 180.94788}, {"W", 183.84},
+    {"Re", 186.207},   {"Os", 190.23},    {"Ir", 192.217},     {"Pt", 195.084},   {"Hg", 200.592},
+    {"Tl", 204.38},    {"Bi", 208.98040}, {"Si", 28.085},      {"B", 10.81},      {"As", 74.921595},
+    {"Te", 127.60},    {"U", 238.02891},
+};
+
+TEST(ElementTest, FurtherMetalsHaveTheirStandardAtomicWeights) {
+  for (const MetalMass& metal : kFurtherMetals) {
+    SCOPED_TRACE(metal.symbol);
+    const Element& element = FindElement(metal.symbol);
+    EXPECT_EQ(element.atomic_mass, metal.mass);
+    EXPECT_GT(element.density_g_cm3, 0.5);
+    EXPECT_LT(element.density_g_cm3, 23);
+    EXPECT_GT(element.valence, 0);
+    // wt% -> atomic fraction for Au-M, by hand: x = (w/M_Au) / (w/M_Au + (1-w)/M).
+    const AlloySystem system{FindElement("Au"), element};
+    for (const double w : {0.1, 0.5, 0.75}) {
+      const double by_hand = (w / kAuMass) / (w / kAuMass + (1 - w) / metal.mass);
+      EXPECT_NEAR(AtomicFromWeightFraction(w, system), by_hand, 1e-14);
+      EXPECT_NEAR(WeightFromAtomicFraction(by_hand, system), w, 1e-14);
+    }
+  }
+  EXPECT_GE(sizeof(kFurtherMetals) / sizeof(kFurtherMetals[0]), 26u);
+}
+
+TEST(ElementTest, ValenceFromAshcroftMerminOrFlaggedConvention) {
+  // Ashcroft & Mermin Table 1.1.
+  for (const auto& [symbol, z] : std::vector<std::pair<const char*, double>>{
+           {"Li", 1}, {"Na", 1}, {"K", 1},  {"Cs", 1}, {"Cu", 1}, {"Ag", 1}, {"Au", 1},
+           {"Be", 2}, {"Mg", 2}, {"Ca", 2}, {"Ba", 2}, {"Nb", 1}, {"Fe", 2}, {"Mn", 2},
+           {"Zn", 2}, {"Cd", 2}, {"Hg", 2}, {"Al", 3}, {"Ga", 3}, {"In", 3}, {"Tl", 3},
+           {"Sn", 4}, {"Pb", 4}, {"Bi", 5}, {"Sb", 5}}) {
+    SCOPED_TRACE(symbol);
+    EXPECT_EQ(FindElement(symbol).valence, z);
+    EXPECT_FALSE(FindElement(symbol).valence_conventional);
+  }
+  // Not in the table: the documented convention, flagged.
+  for (const char* symbol : {"Pd", "Pt", "Ni", "Ti", "Cr", "Co", "Rh", "Ir", "W", "Mo", "V"}) {
+    SCOPED_TRACE(symbol);
+    EXPECT_EQ(FindElement(symbol).valence, 1);
+    EXPECT_TRUE(FindElement(symbol).valence_conventional);
+  }
+  EXPECT_EQ(FindElement("Si").valence, 4);
+  EXPECT_EQ(FindElement("Ge").valence, 4);
+  EXPECT_EQ(FindElement("As").valence, 5);
+  EXPECT_EQ(FindElement("Te").valence, 6);
+  EXPECT_EQ(FindElement("B").valence, 3);
+  EXPECT_TRUE(FindElement("Ge").valence_conventional);
+}
+
+TEST(ElementTest, KnownElementsAreUniqueAndFindable) {
+  const std::vector<Element> elements = KnownElements();
+  EXPECT_GE(elements.size(), 65u);
+  for (std::size_t i = 0; i < elements.size(); ++i) {
+    EXPECT_EQ(&FindElement(elements[i].symbol), &FindElement(elements[i].symbol));
+    EXPECT_EQ(FindElement(elements[i].symbol).atomic_mass, elements[i].atomic_mass);
+    for (std::size_t j = 0; j < i; ++j) {
+      EXPECT_NE(std::string(elements[i].symbol), elements[j].symbol);
+    }
+    // Atomic number order: masses rise except at Ni (58.69, after Co 58.93) and Pa
+    // (231.04, after Th 232.04).
+    const std::string symbol = elements[i].symbol;
+    if (i > 0 && symbol != "Ni" && symbol != "Pa") {
+      EXPECT_GT(elements[i].atomic_mass, elements[i - 1].atomic_mass) << elements[i].symbol;
+    }
+  }
+}
+
+TEST(CompositionTest, KaratsForWhiteGold) {
+  // 18k Au-Pd: w_Au = 0.75; by hand x_Au = (0.75/196.96657) / (0.75/196.96657 +
+  // 0.25/106.42) = 0.6184493758.
+  const AlloySystem au_pd = System("Au", "Pd");
+  EXPECT_NEAR(ParseComposition("18k", au_pd), 0.6184493758, 1e-10);
+  EXPECT_NEAR(WeightFromAtomicFraction(ParseComposition("18k", au_pd), au_pd), 0.75, 1e-14);
+  // 18k Au-Ni: x_Au = (0.75/196.96657) / (0.75/196.96657 + 0.25/58.6934) = 0.4720056952.
+  EXPECT_NEAR(ParseComposition("18k", System("Au", "Ni")), 0.4720056952, 1e-10);
+  EXPECT_NEAR(ParseComposition("18k", System("Pd", "Au")), 1 - 0.6184493758, 1e-10);
+  EXPECT_THAT(ErrorOf("18k", System("Pd", "Ni")), HasSubstr("gold alloys only"));
+  EXPECT_THAT(ErrorOf("18k", System("Pt", "Ir")), HasSubstr("not to Pt-Ir"));
 }
 
 }  // namespace

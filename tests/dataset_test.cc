@@ -6,10 +6,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "alloycolor/core/composition.h"
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/io.h"
 #include "test_util.h"
@@ -21,6 +25,7 @@ namespace fs = std::filesystem;
 using testing::DataDir;
 using ::testing::HasSubstr;
 using testing::MakeTempDir;
+using testing::RunProgram;
 using testing::WriteText;
 
 void ExpectWellFormed(const Dataset& dataset) {
@@ -232,6 +237,181 @@ TEST_F(ManifestTest, MissingManifestOrFolder) {
   EXPECT_THAT(ErrorOf(dir_), HasSubstr("cannot read '" + dir_ + "/dataset.json'"));
   EXPECT_THAT(ErrorOf(dir_ + "/nothing.json"),
               HasSubstr("cannot read '" + dir_ + "/nothing.json'"));
+}
+
+TEST_F(ManifestTest, ElementOverridesAndTheirErrors) {
+  const std::string two =
+      R"("samples": [{"x": 0.2, "file": "a.yml"}, {"x": 0.7, "file": "b.yml"}])";
+  const std::string head =
+      R"({"system": {"a": "Au", "b": "Pd"}, "composition": "weight_fraction_a", )";
+  const Dataset plain = LoadDataset(Manifest(head + two + "}"));
+  EXPECT_STREQ(plain.system.b.symbol, "Pd");
+  EXPECT_EQ(plain.system.b.atomic_mass, 106.42);
+  EXPECT_TRUE(plain.system.b.valence_conventional);
+  EXPECT_FALSE(plain.system.a.valence_conventional);
+  // wt% -> at% with the IUPAC masses, by hand.
+  const double w = 0.2;
+  EXPECT_NEAR(plain.samples[0].x_atomic, (w / 196.966570) / (w / 196.966570 + (1 - w) / 106.42),
+              1e-14);
+
+  const Dataset custom = LoadDataset(Manifest(
+      head +
+      R"("elements": {"Pd": {"valence": 0.36, "density_g_cm3": 12.0, "atomic_mass": 100}},)" + two +
+      "}"));
+  EXPECT_EQ(custom.system.b.valence, 0.36);
+  EXPECT_FALSE(custom.system.b.valence_conventional);
+  EXPECT_EQ(custom.system.b.density_g_cm3, 12.0);
+  EXPECT_EQ(custom.system.b.atomic_mass, 100);
+  EXPECT_NEAR(custom.samples[0].x_atomic, (w / 196.966570) / (w / 196.966570 + (1 - w) / 100),
+              1e-14);
+  EXPECT_TRUE(custom.warnings.empty());
+
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      {R"("elements": [1],)", ": elements: not an object"},
+      {R"("elements": {"Ag": {"valence": 1}},)", ": elements.Ag: 'Ag' is not an element of Au-Pd"},
+      {R"("elements": {"Pd": 3},)", ": elements.Pd: not an object"},
+      {R"("elements": {"Pd": {"valency": 1}},)", ": elements.Pd.valency: unknown key"},
+      {R"("elements": {"Pd": {"valence": "1"}},)",
+       ": elements.Pd.valence: '\"1\"' is not a positive"},
+      {R"("elements": {"Pd": {"valence": -1}},)", ": elements.Pd.valence: '-1' is not a positive"},
+      {R"("elements": {"Pd": {"density_g_cm3": 0}},)", ": elements.Pd.density_g_cm3: '0'"},
+      {R"("elements": {"Pd": {"atomic_mass": 1e300}},)", ": elements.Pd.atomic_mass: '1e+300'"},
+  };
+  for (const auto& [text, expected] : bad) {
+    SCOPED_TRACE(text);
+    const std::string path = Manifest(head + text + two + "}");
+    EXPECT_THAT(ErrorOf(path), HasSubstr(path + expected));
+  }
+}
+
+TEST_F(ManifestTest, FurtherMetalsLoadWithTheirWeightConversion) {
+  // Standard atomic weights typed from the CIAAW 2021 table, independently of the library.
+  const std::vector<std::pair<std::string, double>> metals = {
+      {"Pd", 106.42},    {"Pt", 195.084},   {"Ni", 58.6934},   {"Ti", 47.867},    {"Cr", 51.9961},
+      {"Co", 58.933194}, {"Rh", 102.90549}, {"Ir", 192.217},   {"Ta", 180.94788}, {"W", 183.84},
+      {"Mo", 95.95},     {"V", 50.9415},    {"Ru", 101.07},    {"Os", 190.23},    {"Re", 186.207},
+      {"Zr", 91.224},    {"Hf", 178.486},   {"Mn", 54.938043}, {"Cd", 112.414},   {"Si", 28.085},
+      {"Ge", 72.630},    {"Sb", 121.760},   {"Bi", 208.98040}, {"Li", 6.94},      {"Be", 9.0121831},
+      {"Y", 88.905838},  {"Sc", 44.955907}, {"La", 138.90547}, {"Te", 127.60},    {"B", 10.81},
+  };
+  ASSERT_GE(metals.size(), 26u);
+  for (const auto& [symbol, mass] : metals) {
+    SCOPED_TRACE(symbol);
+    const std::string path = Manifest(R"({"system": {"a": "Au", "b": ")" + symbol +
+                                      R"("}, "composition": "weight_fraction_a", "samples": [
+        {"x": 0.75, "file": "a.yml"}, {"x": 0.3, "file": "b.yml"}]})");
+    const Dataset dataset = LoadDataset(path);
+    ASSERT_EQ(dataset.samples.size(), 2u);
+    EXPECT_EQ(dataset.name, "Au-" + symbol);
+    const auto by_hand = [&mass = mass](double w) {
+      return (w / 196.966570) / (w / 196.966570 + (1 - w) / mass);
+    };
+    EXPECT_NEAR(dataset.samples[0].x_atomic, by_hand(0.3), 1e-13);
+    EXPECT_NEAR(dataset.samples[1].x_atomic, by_hand(0.75), 1e-13);
+    EXPECT_NEAR(ParseComposition("18k", dataset.system), by_hand(0.75), 1e-13);
+  }
+}
+
+TEST_F(ManifestTest, ColumnsAndPairedFiles) {
+  WriteText(dir_ + "/multi.csv",
+            "Export\r\nWavelength(nm),n6,k6,n12,k12,\r\n500,1,2,1,3,\r\n600,1,2,1,3,\r\n");
+  WriteText(dir_ + "/n.yml",
+            "DATA:\n  - type: tabulated n\n    data: |\n        0.5 1\n        0.6 1\n");
+  WriteText(dir_ + "/k.yml",
+            "DATA:\n  - type: tabulated k\n    data: |\n        0.5 4\n        0.6 4\n");
+  const std::string path = Manifest(std::string(kHead) + R"("samples": [
+      {"x": 0.2, "file": "multi.csv", "columns": ["n6", "k6"]},
+      {"x": 0.4, "file": "multi.csv", "columns": [4, 5]},
+      {"x": 0.6, "n_file": "n.yml", "k_file": "k.yml"}]})");
+  const Dataset dataset = LoadDataset(path);
+  ASSERT_EQ(dataset.samples.size(), 3u);
+  EXPECT_EQ(dataset.samples[0].nk.k[0], 2);
+  EXPECT_EQ(dataset.samples[1].nk.k[0], 3);
+  EXPECT_EQ(dataset.samples[2].nk.k[0], 4);
+  EXPECT_EQ(dataset.samples[0].file, "multi.csv (columns n6,k6)");
+  EXPECT_EQ(dataset.samples[1].file, "multi.csv (columns 4,5)");
+  EXPECT_EQ(dataset.samples[2].file, "n.yml + k.yml");
+  EXPECT_EQ(dataset.samples[2].k_path, dir_ + "/k.yml");
+  EXPECT_EQ(dataset.samples[2].checksum,
+            Fnv1a64Hex(ReadFileText(dir_ + "/n.yml") + ReadFileText(dir_ + "/k.yml")));
+
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      {R"({"x": 0.2, "file": "multi.csv"})", "the header holds 2 column pairs"},
+      {R"({"x": 0.2, "file": "multi.csv", "columns": "n6,k6"})",
+       ": samples[0].columns: not a list"},
+      {R"({"x": 0.2, "file": "multi.csv", "columns": ["n6"]})", ": samples[0].columns: not a list"},
+      {R"({"x": 0.2, "file": "multi.csv", "columns": [0, 1]})", "neither a header name nor"},
+      {R"({"x": 0.2, "file": "multi.csv", "columns": ["n7", "k7"]})", "no column named 'n7'"},
+      {R"({"x": 0.2, "n_file": "n.yml"})", ": samples[0]: give either \"file\" or both"},
+      {R"({"x": 0.2, "file": "a.yml", "k_file": "k.yml"})", ": samples[0]: give either"},
+      {R"({"x": 0.2, "n_file": "n.yml", "k_file": "k.yml", "columns": [2, 3]})",
+       "columns: applies to \"file\""},
+      {R"({"x": 0.2, "n_file": "k.yml", "k_file": "n.yml"})", "expected 'tabulated n' alone"},
+  };
+  for (const auto& [sample, expected] : bad) {
+    SCOPED_TRACE(sample);
+    const std::string bad_path = Manifest(std::string(kHead) + R"("samples": [)" + sample + "]}");
+    EXPECT_THAT(ErrorOf(bad_path), HasSubstr(expected));
+  }
+}
+
+// A white-gold data set named with its real elements, made from bundled spectra (the
+// Rioux Au-Ag series relabelled Au-Pd: the optics need no Pd data to be exercised), in
+// three of the layouts labs write, fitted and validated by the real program.
+TEST(AuPdProgramTest, FitAndLeaveOneOutValidationRunOnAWhiteGoldDataSet) {
+  const std::string dir = MakeTempDir();
+  const std::vector<std::pair<int, const char*>> series = {{100, "Rioux-Au100Ag0.yml"},
+                                                           {80, "Rioux-Au80Ag20.yml"},
+                                                           {50, "Rioux-Au50Ag50.yml"},
+                                                           {30, "Rioux-Au30Ag70.yml"},
+                                                           {0, "Rioux-Au0Ag100.yml"}};
+  std::string multi = "Ellipsometer export\r\nAu-Pd series\r\nWavelength(nm),n80,k80,n30,k30,\r\n";
+  const NkSpectrum au80 = ReadNkFile(DataDir() + "/Au-Ag/Rioux-Au80Ag20.yml");
+  const NkSpectrum au30 = ReadNkFile(DataDir() + "/Au-Ag/Rioux-Au30Ag70.yml");
+  ASSERT_EQ(au80.lambda_nm, au30.lambda_nm);
+  for (std::size_t i = au80.lambda_nm.size(); i-- > 0;) {
+    char row[160];
+    std::snprintf(row, sizeof(row), "%.9g,%.9g,%.9g,%.9g,%.9g,\r\n", au80.lambda_nm[i], au80.n[i],
+                  au80.k[i], au30.n[i], au30.k[i]);
+    multi += row;
+  }
+  WriteText(dir + "/export.csv", multi);
+  const NkSpectrum au50 = ReadNkFile(DataDir() + "/Au-Ag/Rioux-Au50Ag50.yml");
+  std::string eps = "# eps of the 50 % film\nEnergy (eV)\te1\te2\n";
+  for (std::size_t i = 0; i < au50.lambda_nm.size(); ++i) {
+    char row[160];
+    const double n = au50.n[i], k = au50.k[i];
+    std::snprintf(row, sizeof(row), "%.9g\t%.9g\t%.9g\n", 1239.8419843320026 / au50.lambda_nm[i],
+                  n * n - k * k, 2 * n * k);
+    eps += row;
+  }
+  WriteText(dir + "/au50-eps.txt", eps);
+  WriteText(dir + "/dataset.json", R"({"name": "white gold, a test",
+    "system": {"a": "Au", "b": "Pd"}, "composition": "atomic_fraction_a", "samples": [
+      {"x": 1.0, "file": ")" + DataDir() +
+                                       R"(/Au-Ag/Rioux-Au100Ag0.yml"},
+      {"x": 0.8, "file": "export.csv", "columns": ["n80", "k80"]},
+      {"x": 0.5, "file": "au50-eps.txt"},
+      {"x": 0.3, "file": "export.csv", "columns": ["n30", "k30"]},
+      {"x": 0.0, "file": ")" + DataDir() +
+                                       R"(/Au-Ag/Rioux-Au0Ag100.yml"}]})");
+
+  const auto fit = RunProgram({"fit", "--data", dir, "--out", dir + "/aupd.json", "--quiet"});
+  ASSERT_EQ(fit.status, 0) << fit.err;
+  const auto model = nlohmann::json::parse(ReadFileText(dir + "/aupd.json"));
+  EXPECT_EQ(model["system"]["a"], "Au");
+  EXPECT_EQ(model["system"]["b"], "Pd");
+
+  const auto color = RunProgram({"color", "--model", dir + "/aupd.json", "--x", "18k", "--json"});
+  EXPECT_EQ(color.status, 0) << color.err;
+
+  const auto validate =
+      RunProgram({"validate", "--data", dir, "--loo", "--out", dir + "/report", "--quiet"});
+  ASSERT_EQ(validate.status, 0) << validate.err;
+  const auto report = nlohmann::json::parse(ReadFileText(dir + "/report/report.json"));
+  EXPECT_EQ(report["mode"], "loo");
+  EXPECT_EQ(report["holdouts"].size(), 3u);  // the interior samples
+  fs::remove_all(dir);
 }
 
 }  // namespace

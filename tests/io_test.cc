@@ -398,15 +398,16 @@ TEST_F(CsvTest, BadInputNamesFileAndLine) {
       {"", ": no data"},
       {"# only a comment\n\n", ": no data"},
       {"lambda_nm,n,k\n", ":1: no data rows"},
-      {"# c\nwavelength,n,k\n500,1,2\n", ":2: expected the header 'lambda_nm,n,k'"},
+      {"# c\nwavelength,n,k\n500,1,2\n", ":2: header column 'wavelength' gives no unit"},
       {"lambda_nm,n,k\n500,1,2\n600,one,2\n", ":3: cannot parse number 'one'"},
       {"lambda_nm,n,k\n500,1,2\n600,1\n", ":3: expected 3 columns (lambda_nm,n,k), found 2"},
-      {"lambda_nm,n,k\n500,1,2\n600,1,2,\n", ":3: expected 3 columns"},
+      {"lambda_nm,n,k\n500,1,2\n600,1,2,3\n", ":3: expected 3 columns"},
       {"lambda_nm,n,k\n500,1,2\n600,,2\n", ":3: cannot parse number ''"},
       {"lambda_nm,n,k\n500,1,2\n600,1,NaN\n", ":3: k is 'NaN', not a finite number"},
       {"lambda_nm,n,k\n500,1,2\n", ":1: only 1 distinct wavelength"},
       {"lambda_nm,n,k\n-500,1,2\n600,1,2\n", ":2: lambda_nm = -500 is not positive"},
-      {"lambda_nm,n,k\n500,1,2\n400,1,2\n", ":3: lambda_nm = 400 does not increase"},
+      {"lambda_nm,n,k\n400,1,2\n500,1,2\n450,1,2\n", ":4: lambda_nm = 450 does not increase"},
+      {"lambda_nm,n,k\n500,1,2\n400,1,2\n450,1,2\n", ":4: lambda_nm = 450 does not decrease"},
       {"lambda_nm,n,k\n500,-1,2\n600,1,2\n", ":2: n = -1 is negative"},
       {"lambda_nm,n,k\n500,1,2\n600,1,-2\n", ":3: k = -2 is negative"},
   };
@@ -424,9 +425,10 @@ TEST_F(ReadNkFileTest2, ExtensionChoosesTheReader) {
   const std::string yaml_text = std::string(kYamlHead) + "        0.5 1 2\n        0.6 1 2\n";
   EXPECT_NO_THROW(ReadNkFile(Write("upper.YAML", yaml_text)));
   EXPECT_NO_THROW(ReadNkFile(Write("looks_like_yaml.txt", yaml_text)));
-  const std::string other = Write("table.txt", "lambda_nm,n,k\n500,1,2\n600,1,2\n");
+  EXPECT_NO_THROW(ReadNkFile(Write("table.txt", "lambda_nm,n,k\n500,1,2\n600,1,2\n")));
+  const std::string other = Write("table.xyz", "lambda_nm,n,k\n500,1,2\n600,1,2\n");
   EXPECT_THAT(ErrorOf([&] { ReadNkFile(other); }), HasSubstr(other + ": cannot tell the format"));
-  EXPECT_THAT(ErrorOf([&] { ReadNkFile(other); }), HasSubstr("'.txt'"));
+  EXPECT_THAT(ErrorOf([&] { ReadNkFile(other); }), HasSubstr("'.xyz'"));
 }
 
 TEST_F(ReadNkFileTest2, MissingFileOrFolderIsRefused) {

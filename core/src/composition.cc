@@ -1,91 +1,109 @@
 #include "alloycolor/core/composition.h"
 
-#include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 #include <string>
 #include <string_view>
-#include <system_error>
+#include <vector>
 
 #include "alloycolor/core/error.h"
+#include "alloycolor/core/text.h"
 #include "alloycolor/core/units.h"
 
 namespace alloycolor {
 namespace {
 
-// The elements the library knows: only those with a sourced value in every column.
-//  - atomic_mass: IUPAC standard atomic weights (CIAAW, 2021 table; for Mg and Pb, whose
-//    standard weight is an interval, the IUPAC abridged/conventional value).
-//  - density_g_cm3: CRC Handbook of Chemistry and Physics, section 4 ("Physical Constants
-//    of Inorganic Compounds"), at room temperature; Sn is white (beta) tin.
-//  - valence: free electrons per atom Z as listed by Ashcroft & Mermin, Solid State
-//    Physics (1976), Table 1.1 ("Free electron densities of selected elements"). For Nb
-//    it gives Z = 1, the value commonly taken for Drude fits (one s-like conduction
-//    electron; the group valence 5 counts the d electrons, which do not behave as free
-//    electrons), and we follow it. Transition metals such as Ni, Pd, Pt, Cr, Ti, Co, Rh,
-//    Ir, Ta, W, Mo and V have no free-electron valence in that table, so they are left
-//    out rather than given an invented one.
+// The element table; sources and the valence convention are in composition.h.
+//  - atomic_mass: CIAAW 2021 standard atomic weights; conventional (abridged) values for
+//    the interval elements Li, B, Mg, Si, Tl, Pb.
+//  - density_g_cm3: CRC Handbook, section 4, room temperature. Sn is white (beta) tin,
+//    As grey arsenic, Se grey selenium, B beta-rhombohedral boron, Hg the liquid at 25 C.
+//  - valence: kAM = Ashcroft & Mermin Table 1.1 (Li, Na, K, Rb, Cs, Cu, Ag, Au, Be, Mg, Ca,
+//    Sr, Ba, Nb, Fe, Mn, Zn, Cd, Hg, Al, Ga, In, Tl, Sn, Pb, Bi, Sb); kConv = convention
+//    (1 for d- and f-block metals, the group valence for the p block).
+// Elements without a standard atomic weight (Tc, Pm, Po and the heavier actinides) are
+// absent: a data set naming one must give its atomic_mass and density_g_cm3.
+constexpr bool kAM = false;   // valence from Ashcroft & Mermin
+constexpr bool kConv = true;  // conventional valence
 // clang-format off
 constexpr Element kElements[] = {
-    // symbol, g/mol,    g/cm^3, Z
-    {"Ag", 107.8682,   10.5,   1},
-    {"Al", 26.9815384, 2.70,   3},
-    {"Au", 196.966570, 19.3,   1},
-    {"Cu", 63.546,     8.96,   1},
-    {"Fe", 55.845,     7.874,  2},
-    {"Ga", 69.723,     5.91,   3},
-    {"In", 114.818,    7.31,   3},
-    {"Mg", 24.305,     1.74,   2},
-    {"Nb", 92.90637,   8.57,   1},
-    {"Pb", 207.2,      11.3,   4},
-    {"Sn", 118.710,    7.287,  4},
-    {"Zn", 65.38,      7.134,  2},
+    // symbol, g/mol,       g/cm^3, Z, source of Z
+    {"Li", 6.94,         0.534,  1, kAM},
+    {"Be", 9.0121831,    1.85,   2, kAM},
+    {"B",  10.81,        2.34,   3, kConv},
+    {"Na", 22.98976928,  0.971,  1, kAM},
+    {"Mg", 24.305,       1.74,   2, kAM},
+    {"Al", 26.9815384,   2.70,   3, kAM},
+    {"Si", 28.085,       2.3296, 4, kConv},
+    {"K",  39.0983,      0.89,   1, kAM},
+    {"Ca", 40.078,       1.54,   2, kAM},
+    {"Sc", 44.955907,    2.99,   1, kConv},
+    {"Ti", 47.867,       4.506,  1, kConv},
+    {"V",  50.9415,      6.0,    1, kConv},
+    {"Cr", 51.9961,      7.15,   1, kConv},
+    {"Mn", 54.938043,    7.3,    2, kAM},
+    {"Fe", 55.845,       7.874,  2, kAM},
+    {"Co", 58.933194,    8.86,   1, kConv},
+    {"Ni", 58.6934,      8.90,   1, kConv},
+    {"Cu", 63.546,       8.96,   1, kAM},
+    {"Zn", 65.38,        7.134,  2, kAM},
+    {"Ga", 69.723,       5.91,   3, kAM},
+    {"Ge", 72.630,       5.3234, 4, kConv},
+    {"As", 74.921595,    5.75,   5, kConv},
+    {"Se", 78.971,       4.81,   6, kConv},
+    {"Rb", 85.4678,      1.53,   1, kAM},
+    {"Sr", 87.62,        2.64,   2, kAM},
+    {"Y",  88.905838,    4.47,   1, kConv},
+    {"Zr", 91.224,       6.52,   1, kConv},
+    {"Nb", 92.90637,     8.57,   1, kAM},
+    {"Mo", 95.95,        10.2,   1, kConv},
+    {"Ru", 101.07,       12.1,   1, kConv},
+    {"Rh", 102.90549,    12.4,   1, kConv},
+    {"Pd", 106.42,       12.0,   1, kConv},
+    {"Ag", 107.8682,     10.5,   1, kAM},
+    {"Cd", 112.414,      8.69,   2, kAM},
+    {"In", 114.818,      7.31,   3, kAM},
+    {"Sn", 118.710,      7.287,  4, kAM},
+    {"Sb", 121.760,      6.68,   5, kAM},
+    {"Te", 127.60,       6.232,  6, kConv},
+    {"Cs", 132.90545196, 1.93,   1, kAM},
+    {"Ba", 137.327,      3.62,   2, kAM},
+    {"La", 138.90547,    6.15,   1, kConv},
+    {"Ce", 140.116,      6.770,  1, kConv},
+    {"Pr", 140.90766,    6.77,   1, kConv},
+    {"Nd", 144.242,      7.01,   1, kConv},
+    {"Sm", 150.36,       7.52,   1, kConv},
+    {"Eu", 151.964,      5.24,   1, kConv},
+    {"Gd", 157.25,       7.90,   1, kConv},
+    {"Tb", 158.925354,   8.23,   1, kConv},
+    {"Dy", 162.500,      8.55,   1, kConv},
+    {"Ho", 164.930329,   8.80,   1, kConv},
+    {"Er", 167.259,      9.07,   1, kConv},
+    {"Tm", 168.934219,   9.32,   1, kConv},
+    {"Yb", 173.045,      6.90,   1, kConv},
+    {"Lu", 174.9668,     9.84,   1, kConv},
+    {"Hf", 178.486,      13.3,   1, kConv},
+    {"Ta", 180.94788,    16.4,   1, kConv},
+    {"W",  183.84,       19.3,   1, kConv},
+    {"Re", 186.207,      20.8,   1, kConv},
+    {"Os", 190.23,       22.59,  1, kConv},
+    {"Ir", 192.217,      22.56,  1, kConv},
+    {"Pt", 195.084,      21.5,   1, kConv},
+    {"Au", 196.966570,   19.3,   1, kAM},
+    {"Hg", 200.592,      13.5336, 2, kAM},
+    {"Tl", 204.38,       11.8,   3, kAM},
+    {"Pb", 207.2,        11.3,   4, kAM},
+    {"Bi", 208.98040,    9.79,   5, kAM},
+    {"Th", 232.0377,     11.7,   1, kConv},
+    {"Pa", 231.03588,    15.4,   1, kConv},
+    {"U",  238.02891,    19.1,   1, kConv},
 };
 // clang-format on
 
-[[noreturn]] void Fail(std::string message) {
-  for (char& c : message) {
-    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
-  }
-  throw Error(message);
-}
-
-std::string Number(double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), "%.10g", value);
-  return buffer;
-}
-
-// Text from the user quoted in a message: at most 40 characters.
-std::string Quote(std::string_view text) {
-  constexpr std::size_t kMax = 40;
-  if (text.size() <= kMax) return "'" + std::string(text) + "'";
-  return "'" + std::string(text.substr(0, kMax)) + "...'";
-}
-
-std::string_view Trim(std::string_view text) {
-  while (!text.empty() && (text.front() == ' ' || text.front() == '\t')) text.remove_prefix(1);
-  while (!text.empty() && (text.back() == ' ' || text.back() == '\t')) text.remove_suffix(1);
-  return text;
-}
-
-bool EndsWith(std::string_view text, std::string_view suffix) {
-  return text.size() >= suffix.size() && text.substr(text.size() - suffix.size()) == suffix;
-}
-
-// A finite number in the C locale, the whole text.
-bool ParseDouble(std::string_view token, double* value) {
-  const bool plus = !token.empty() && token.front() == '+';
-  if (plus) token.remove_prefix(1);
-  if (token.empty() || (plus && token.front() == '-')) return false;
-  const char* end = token.data() + token.size();
-  const auto [ptr, ec] = std::from_chars(token.data(), end, *value);
-  return ec == std::errc() && ptr == end && std::isfinite(*value);
-}
-
 void CheckFraction(double fraction, const char* what) {
   if (!(fraction >= 0 && fraction <= 1)) {
-    Fail(std::string(what) + " " + Number(fraction) + " lies outside [0, 1]");
+    Fail(std::string(what) + " " + FormatNumber(fraction) + " lies outside [0, 1]");
   }
 }
 
@@ -96,6 +114,10 @@ const Element& FindElement(const std::string& symbol) {
     if (symbol == element.symbol) return element;
   }
   Fail("unknown element " + Quote(symbol));
+}
+
+std::vector<Element> KnownElements() {
+  return std::vector<Element>(std::begin(kElements), std::end(kElements));
 }
 
 std::string AlloySystem::Name() const {
@@ -126,7 +148,7 @@ double ParseComposition(const std::string& text, const AlloySystem& system) {
   const std::string_view view(lower);
   double value = 0;
   const auto number = [&](std::size_t suffix_length) {
-    if (!ParseDouble(Trim(view.substr(0, view.size() - suffix_length)), &value)) {
+    if (!ParseFiniteDouble(Trim(view.substr(0, view.size() - suffix_length)), &value)) {
       Fail(quoted + ": cannot read the number");
     }
   };

@@ -13,6 +13,7 @@
 
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/io.h"
+#include "alloycolor/core/text.h"
 
 namespace alloycolor {
 namespace {
@@ -24,30 +25,7 @@ constexpr const char* kAtomic = "atomic_fraction_a";
 constexpr const char* kWeight = "weight_fraction_a";
 constexpr double kSameComposition = 1e-9;
 
-[[noreturn]] void Fail(std::string message) {
-  for (char& c : message) {
-    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
-  }
-  throw Error(message);
-}
-
-std::string Number(double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), "%.10g", value);
-  return buffer;
-}
-
-std::string Quote(const std::string& text) {
-  constexpr std::size_t kMax = 60;
-  if (text.size() <= kMax) return "'" + text + "'";
-  return "'" + text.substr(0, kMax) + "...'";
-}
-
-// 1-based line of a byte offset of text.
-int LineOfByte(const std::string& text, std::size_t byte) {
-  byte = std::min(byte, text.size());
-  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + byte, '\n'));
-}
+std::string Quote60(const std::string& text) { return Quote(text, 60); }
 
 Json ParseManifest(const std::string& manifest, const std::string& text) {
   try {
@@ -82,7 +60,46 @@ void WarnUnknownKeys(const std::string& manifest, const std::string& where, cons
                      const std::vector<std::string>& known, std::vector<std::string>* warnings) {
   for (auto it = object.begin(); it != object.end(); ++it) {
     if (std::find(known.begin(), known.end(), it.key()) == known.end()) {
-      warnings->push_back(manifest + ": " + where + "unknown key " + Quote(it.key()) + " ignored");
+      warnings->push_back(manifest + ": " + where + "unknown key " + Quote60(it.key()) +
+                          " ignored");
+    }
+  }
+}
+
+// "elements": {"Pd": {"valence": 0.36, "density_g_cm3": 12.0, "atomic_mass": 106.42}}
+// replaces the table's values for the system's elements; a valence given here is no
+// longer conventional.
+void ApplyElementOverrides(const std::string& manifest, const Json& elements, AlloySystem* system) {
+  if (!elements.is_object()) {
+    Fail(manifest + ": elements: not an object like {\"Pd\": {\"valence\": 0.36}}");
+  }
+  for (auto it = elements.begin(); it != elements.end(); ++it) {
+    const std::string where = "elements." + it.key();
+    Element* element = it.key() == system->a.symbol   ? &system->a
+                       : it.key() == system->b.symbol ? &system->b
+                                                      : nullptr;
+    if (element == nullptr) {
+      Fail(manifest + ": " + where + ": " + Quote60(it.key()) + " is not an element of " +
+           system->Name());
+    }
+    if (!it.value().is_object()) Fail(manifest + ": " + where + ": not an object");
+    for (auto field = it.value().begin(); field != it.value().end(); ++field) {
+      const std::string name = where + "." + field.key();
+      double* target = field.key() == "valence"         ? &element->valence
+                       : field.key() == "density_g_cm3" ? &element->density_g_cm3
+                       : field.key() == "atomic_mass"   ? &element->atomic_mass
+                                                        : nullptr;
+      if (target == nullptr) {
+        Fail(manifest + ": " + name +
+             ": unknown key (expected valence, density_g_cm3 or atomic_mass)");
+      }
+      const double value = field.value().is_number() ? field.value().get<double>() : -1;
+      if (!field.value().is_number() || !std::isfinite(value) || !(value > 0) || value > 1e4) {
+        Fail(manifest + ": " + name + ": " + Quote60(field.value().dump()) +
+             " is not a positive number");
+      }
+      *target = value;
+      if (field.key() == "valence") element->valence_conventional = false;
     }
   }
 }
@@ -106,7 +123,7 @@ Dataset Load(const std::string& dir_or_manifest) {
   dataset.manifest_path = manifest;
   if (!root.is_object()) Fail(manifest + ": the manifest is not a JSON object");
   WarnUnknownKeys(manifest, "", root,
-                  {"name", "system", "composition", "samples", "source", "notes"},
+                  {"name", "system", "composition", "samples", "source", "notes", "elements"},
                   &dataset.warnings);
 
   if (!root.contains("system") || !root.at("system").is_object()) {
@@ -118,6 +135,8 @@ Dataset Load(const std::string& dir_or_manifest) {
   if (std::string(dataset.system.a.symbol) == dataset.system.b.symbol) {
     Fail(manifest + ": system: a and b are both '" + dataset.system.a.symbol + "'");
   }
+  if (root.contains("elements"))
+    ApplyElementOverrides(manifest, root.at("elements"), &dataset.system);
 
   for (const char* key : {"name", "source", "notes"}) {
     if (root.contains(key) && !root.at(key).is_string()) {
@@ -132,7 +151,7 @@ Dataset Load(const std::string& dir_or_manifest) {
   const Json& composition = root.at("composition");
   if (!composition.is_string() ||
       (composition.get<std::string>() != kAtomic && composition.get<std::string>() != kWeight)) {
-    Fail(manifest + ": composition: " + Quote(composition.dump()) + " is neither \"" + kAtomic +
+    Fail(manifest + ": composition: " + Quote60(composition.dump()) + " is neither \"" + kAtomic +
          "\" nor \"" + kWeight + "\"");
   }
   dataset.composition = composition.get<std::string>();
@@ -147,28 +166,74 @@ Dataset Load(const std::string& dir_or_manifest) {
     const std::string where = "samples[" + std::to_string(i) + "]";
     const Json& entry = samples.at(i);
     if (!entry.is_object()) Fail(manifest + ": " + where + ": not an object");
-    WarnUnknownKeys(manifest, where + ": ", entry, {"x", "file"}, &dataset.warnings);
-    if (!entry.contains("file") || !entry.at("file").is_string() ||
-        entry.at("file").get<std::string>().empty()) {
+    WarnUnknownKeys(manifest, where + ": ", entry, {"x", "file", "n_file", "k_file", "columns"},
+                    &dataset.warnings);
+    Sample sample;
+    const auto file_field = [&](const char* key) {
+      if (!entry.contains(key)) return std::string();
+      if (!entry.at(key).is_string() || entry.at(key).get<std::string>().empty()) {
+        Fail(manifest + ": " + where + "." + key + ": not a file name");
+      }
+      return entry.at(key).get<std::string>();
+    };
+    const std::string file = file_field("file");
+    const std::string n_file = file_field("n_file");
+    const std::string k_file = file_field("k_file");
+    if (file.empty() && n_file.empty() && k_file.empty()) {
       Fail(manifest + ": " + where + ".file: missing or not a file name");
     }
-    Sample sample;
-    sample.file = entry.at("file").get<std::string>();
-    const std::string named = manifest + ": " + where + " (" + Quote(sample.file) + ")";
+    if (!file.empty() == (!n_file.empty() || !k_file.empty()) || n_file.empty() != k_file.empty()) {
+      Fail(manifest + ": " + where + ": give either \"file\" or both \"n_file\" and \"k_file\"");
+    }
+    const auto resolve = [&](const std::string& name) {
+      const fs::path given(name);
+      std::string path = (given.is_absolute() ? given : folder / given).lexically_normal().string();
+      return path.empty() ? name : path;
+    };
+    if (file.empty()) {
+      sample.file = n_file + " + " + k_file;
+      sample.path = resolve(n_file);
+      sample.k_path = resolve(k_file);
+    } else {
+      sample.file = file;
+      sample.path = resolve(file);
+    }
+    if (entry.contains("columns")) {
+      const Json& columns = entry.at("columns");
+      const auto column = [&](const Json& value) {
+        if (value.is_string() && !value.get<std::string>().empty()) return value.get<std::string>();
+        if (value.is_number_unsigned() && value.get<unsigned long long>() >= 1 &&
+            value.get<unsigned long long>() < 1000000) {
+          return std::to_string(value.get<unsigned long long>());
+        }
+        Fail(manifest + ": " + where + ".columns: " + Quote60(value.dump()) +
+             " is neither a header name nor a 1-based column number");
+      };
+      if (!columns.is_array() || columns.size() != 2) {
+        Fail(manifest + ": " + where +
+             ".columns: not a list of two columns like [\"n6\", \"k6\"] or [2, 3]");
+      }
+      if (file.empty()) {
+        Fail(manifest + ": " + where + ".columns: applies to \"file\", not to n_file/k_file");
+      }
+      sample.columns.n = column(columns.at(0));
+      sample.columns.k = column(columns.at(1));
+      sample.file = file + " (columns " + sample.columns.n + "," + sample.columns.k + ")";
+    }
+    const std::string named = manifest + ": " + where + " (" + Quote60(sample.file) + ")";
     if (!entry.contains("x") || !entry.at("x").is_number()) {
       Fail(named + ": x: missing or not a number");
     }
     sample.x_given = entry.at("x").get<double>();
     if (!(sample.x_given >= 0 && sample.x_given <= 1)) {
-      Fail(named + ": x = " + Number(sample.x_given) + " lies outside [0, 1]");
+      Fail(named + ": x = " + FormatNumber(sample.x_given) + " lies outside [0, 1]");
     }
     sample.x_atomic =
         by_weight ? AtomicFromWeightFraction(sample.x_given, dataset.system) : sample.x_given;
-    const fs::path file(sample.file);
-    sample.path = (file.is_absolute() ? file : folder / file).lexically_normal().string();
-    if (sample.path.empty()) sample.path = sample.file;
-    if (SameFile(sample.path, manifest_path)) {
-      Fail(named + ": the sample file is the manifest itself");
+    for (const std::string* path : {&sample.path, &sample.k_path}) {
+      if (!path->empty() && SameFile(*path, manifest_path)) {
+        Fail(named + ": the sample file is the manifest itself");
+      }
     }
     dataset.samples.push_back(std::move(sample));
   }
@@ -179,15 +244,20 @@ Dataset Load(const std::string& dir_or_manifest) {
     const Sample& s = dataset.samples[i - 1];
     const Sample& t = dataset.samples[i];
     if (t.x_atomic - s.x_atomic <= kSameComposition) {
-      Fail(manifest + ": samples " + Quote(s.file) + " and " + Quote(t.file) +
-           " have the same composition, x = " + Number(s.x_given));
+      Fail(manifest + ": samples " + Quote60(s.file) + " and " + Quote60(t.file) +
+           " have the same composition, x = " + FormatNumber(s.x_given));
     }
   }
 
   for (Sample& sample : dataset.samples) {
     std::vector<std::string> warnings;
-    sample.nk = ReadNkFile(sample.path, &warnings);
-    sample.checksum = Fnv1a64Hex(ReadFileText(sample.path));
+    if (sample.k_path.empty()) {
+      sample.nk = ReadNkFile(sample.path, sample.columns, &warnings);
+      sample.checksum = Fnv1a64Hex(ReadFileText(sample.path));
+    } else {
+      sample.nk = ReadNkPair(sample.path, sample.k_path, &warnings);
+      sample.checksum = Fnv1a64Hex(ReadFileText(sample.path) + ReadFileText(sample.k_path));
+    }
     // The readers' warnings already begin with the file (and line).
     for (std::string& warning : warnings) dataset.warnings.push_back(std::move(warning));
   }

@@ -14,12 +14,17 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <initializer_list>
+#include <regex>
 #include <string>
 #include <string_view>
 #include <system_error>
 #include <vector>
 
 #include "alloycolor/core/error.h"
+#include "alloycolor/core/permittivity.h"
+#include "alloycolor/core/text.h"
+#include "alloycolor/core/units.h"
 
 namespace alloycolor {
 namespace {
@@ -28,71 +33,9 @@ constexpr std::string_view kYamlUnsupported =
     "only tabulated nk, or tabulated n plus tabulated k, are supported";
 constexpr std::string_view kCsvHeader = "lambda_nm,n,k";
 
-// Throws Error with the message on one line (control characters, which could come from
-// a damaged file or path, become '?').
-[[noreturn]] void Fail(std::string message) {
-  for (char& c : message) {
-    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
-  }
-  throw Error(message);
-}
-
 std::string ErrnoText(int error) { return std::generic_category().message(error); }
 
-// Text from a file quoted in a message: at most 40 characters.
-std::string Quote(std::string_view text) {
-  constexpr std::size_t kMax = 40;
-  if (text.size() <= kMax) return "'" + std::string(text) + "'";
-  return "'" + std::string(text.substr(0, kMax)) + "...'";
-}
-
-std::string Number(double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), "%.10g", value);
-  return buffer;
-}
-
 bool IsBlank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
-
-std::string_view Trim(std::string_view text) {
-  while (!text.empty() && IsBlank(text.front())) text.remove_prefix(1);
-  while (!text.empty() && IsBlank(text.back())) text.remove_suffix(1);
-  return text;
-}
-
-std::string Lower(std::string_view text) {
-  std::string result(text);
-  for (char& c : result) {
-    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
-  }
-  return result;
-}
-
-// Splits text at '\n'.
-std::vector<std::string_view> Lines(std::string_view text) {
-  std::vector<std::string_view> lines;
-  std::size_t start = 0;
-  while (start <= text.size()) {
-    const std::size_t end = text.find('\n', start);
-    if (end == std::string_view::npos) {
-      lines.push_back(text.substr(start));
-      break;
-    }
-    lines.push_back(text.substr(start, end - start));
-    start = end + 1;
-  }
-  return lines;
-}
-
-// A whole number in the C locale ("1.5", "-2e-3", "+4"); no trailing characters.
-bool ParseDouble(std::string_view token, double* value) {
-  const bool plus = !token.empty() && token.front() == '+';
-  if (plus) token.remove_prefix(1);
-  if (token.empty() || (plus && token.front() == '-')) return false;
-  const char* end = token.data() + token.size();
-  const auto [ptr, ec] = std::from_chars(token.data(), end, *value);
-  return ec == std::errc() && ptr == end;
-}
 
 // Where a row of a table was read. CSV rows and rows of a YAML literal block know their
 // file line; rows of other YAML scalars are named by their number after the `data:` line.
@@ -131,6 +74,30 @@ struct Columns {
   }
 };
 
+// "nan", "inf", "infinity" with an optional sign: numbers, but not finite ones.
+bool IsNonFiniteWord(std::string_view field) {
+  if (!field.empty() && (field.front() == '+' || field.front() == '-')) field.remove_prefix(1);
+  const std::string lower = Lower(field);
+  return lower == "nan" || lower == "inf" || lower == "infinity";
+}
+
+// A field as a finite number; the message tells a non-number from a non-finite one.
+double ParseField(std::string_view field, const std::string& name, const std::string& at) {
+  double value = 0;
+  if (ParseFiniteDouble(field, &value)) return value;
+  if (IsNonFiniteWord(field)) Fail(at + name + " is " + Quote(field) + ", not a finite number");
+  Fail(at + "cannot parse number " + Quote(field) + " (" + name + ")");
+}
+
+// n and k within [0, kMaxOpticalConstant].
+void CheckOpticalConstant(double value, const std::string& name, const std::string& at) {
+  if (value < 0) Fail(at + name + " = " + FormatNumber(value) + " is negative");
+  if (value > kMaxOpticalConstant) {
+    Fail(at + name + " = " + FormatNumber(value) + " is implausibly large (over " +
+         FormatNumber(kMaxOpticalConstant) + ")");
+  }
+}
+
 Row ParseRow(const std::vector<std::string_view>& fields, const Columns& columns, char separator,
              const Locator& where, int line, int index) {
   const std::string at = where.Row(line, index);
@@ -140,24 +107,13 @@ Row ParseRow(const std::vector<std::string_view>& fields, const Columns& columns
   }
   double parsed[3] = {0, 0, 0};
   for (std::size_t i = 0; i < fields.size(); ++i) {
-    if (!ParseDouble(fields[i], &parsed[i])) {
-      Fail(at + "cannot parse number " + Quote(fields[i]) + " (" + columns.names[i] + ")");
-    }
-    if (!std::isfinite(parsed[i])) {
-      Fail(at + columns.names[i] + " is " + Quote(fields[i]) + ", not a finite number");
-    }
+    parsed[i] = ParseField(fields[i], columns.names[i], at);
   }
   if (!(parsed[0] > 0)) {
-    Fail(at + columns.names[0] + " = " + Number(parsed[0]) + " is not positive");
+    Fail(at + columns.names[0] + " = " + FormatNumber(parsed[0]) + " is not positive");
   }
   for (std::size_t i = 1; i < fields.size(); ++i) {
-    if (parsed[i] < 0) {
-      Fail(at + columns.names[i] + " = " + Number(parsed[i]) + " is negative");
-    }
-    if (parsed[i] > kMaxOpticalConstant) {
-      Fail(at + columns.names[i] + " = " + Number(parsed[i]) + " is implausibly large (over " +
-           Number(kMaxOpticalConstant) + ")");
-    }
+    CheckOpticalConstant(parsed[i], columns.names[i], at);
   }
   Row row;
   row.line = line;
@@ -175,9 +131,10 @@ struct Table {
 };
 
 // Checks the order of the rows and averages exact repeats of a wavelength (with a
-// warning); refuses decreasing wavelengths and tables of fewer than two wavelengths.
+// warning); refuses tables of fewer than two wavelengths and rows out of order: rows must
+// ascend, or, with either_direction, may all descend instead (then the table is reversed).
 Table FinishRows(const std::vector<Row>& rows, const Columns& columns, const Locator& where,
-                 std::vector<std::string>* warnings) {
+                 std::vector<std::string>* warnings, bool either_direction = false) {
   const std::string& unit = columns.names[0];
   if (rows.empty()) Fail(where.At(where.block_line) + "no data rows");
   Table table;
@@ -185,6 +142,14 @@ Table FinishRows(const std::vector<Row>& rows, const Columns& columns, const Loc
   std::vector<bool> differ;
   std::vector<const Row*> firsts;
   const Row* previous = nullptr;
+  bool descending = false;
+  if (either_direction) {
+    for (const Row& row : rows) {
+      if (row.lambda == rows.front().lambda) continue;
+      descending = row.lambda < rows.front().lambda;
+      break;
+    }
+  }
   for (const Row& row : rows) {
     if (previous != nullptr && row.lambda == previous->lambda) {
       table.values[0].back() += row.values[0];
@@ -195,9 +160,12 @@ Table FinishRows(const std::vector<Row>& rows, const Columns& columns, const Loc
       }
       continue;
     }
-    if (previous != nullptr && row.lambda < previous->lambda) {
-      Fail(where.Row(row.line, row.index) + unit + " = " + Number(row.lambda) +
-           " does not increase (the row before has " + Number(previous->lambda) + ")");
+    if (previous != nullptr &&
+        (descending ? row.lambda > previous->lambda : row.lambda < previous->lambda)) {
+      Fail(where.Row(row.line, row.index) + unit + " = " + FormatNumber(row.lambda) +
+           (descending ? " does not decrease like the rows before (the row before has "
+                       : " does not increase (the row before has ") +
+           FormatNumber(previous->lambda) + ")");
     }
     table.lambda.push_back(row.lambda);
     table.values[0].push_back(row.values[0]);
@@ -213,10 +181,15 @@ Table FinishRows(const std::vector<Row>& rows, const Columns& columns, const Loc
     table.values[1][i] /= counts[i];
     if (warnings != nullptr) {
       warnings->push_back(where.Row(firsts[i]->line, firsts[i]->index) + unit + " = " +
-                          Number(table.lambda[i]) + " is given " + std::to_string(counts[i]) +
+                          FormatNumber(table.lambda[i]) + " is given " + std::to_string(counts[i]) +
                           (differ[i] ? " times with different values; their mean is used"
                                      : " times with the same values; kept once"));
     }
+  }
+  if (descending) {
+    std::reverse(table.lambda.begin(), table.lambda.end());
+    std::reverse(table.values[0].begin(), table.values[0].end());
+    std::reverse(table.values[1].begin(), table.values[1].end());
   }
   if (table.lambda.size() < 2) {
     Fail(where.At(where.block_line) + "only " + std::to_string(table.lambda.size()) +
@@ -237,20 +210,6 @@ std::vector<std::string_view> SplitWhitespace(std::string_view text) {
   return fields;
 }
 
-std::vector<std::string_view> SplitCommas(std::string_view text) {
-  std::vector<std::string_view> fields;
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t comma = text.find(',', start);
-    if (comma == std::string_view::npos) {
-      fields.push_back(Trim(text.substr(start)));
-      return fields;
-    }
-    fields.push_back(Trim(text.substr(start, comma - start)));
-    start = comma + 1;
-  }
-}
-
 // Spectrum from a table whose wavelengths are in micrometres (YAML) or nanometres (CSV).
 NkSpectrum MakeSpectrum(const std::string& path, const std::vector<double>& lambda,
                         const std::vector<double>& n, const std::vector<double>& k,
@@ -261,11 +220,11 @@ NkSpectrum MakeSpectrum(const std::string& path, const std::vector<double>& lamb
   for (std::size_t i = 0; i < lambda.size(); ++i) {
     const double lambda_nm = lambda[i] * nm_per_unit;
     if (!std::isfinite(lambda_nm)) {
-      Fail(path + ": " + unit + " = " + Number(lambda[i]) + " is too large");
+      Fail(path + ": " + unit + " = " + FormatNumber(lambda[i]) + " is too large");
     }
     if (i > 0 && !(lambda_nm > spectrum.lambda_nm.back())) {
-      Fail(path + ": " + unit + " = " + Number(lambda[i - 1]) + " and " + Number(lambda[i]) +
-           " are too close to tell apart in nm");
+      Fail(path + ": " + unit + " = " + FormatNumber(lambda[i - 1]) + " and " +
+           FormatNumber(lambda[i]) + " are too close to tell apart in nm");
     }
     spectrum.lambda_nm.push_back(lambda_nm);
   }
@@ -349,21 +308,23 @@ NkSpectrum JoinNK(const std::string& path, const Table& n_table, const Table& k_
     n.push_back(n_table.values[0][i]);
     k.push_back(Interpolate(k_table.lambda, k_table.values[0], x));
   }
-  const std::string ranges = "tabulated n covers " + Number(n_table.lambda.front()) + " to " +
-                             Number(n_table.lambda.back()) + " um, tabulated k " + Number(k_lo) +
-                             " to " + Number(k_hi) + " um";
+  const std::string ranges = "tabulated n covers " + FormatNumber(n_table.lambda.front()) + " to " +
+                             FormatNumber(n_table.lambda.back()) + " um, tabulated k " +
+                             FormatNumber(k_lo) + " to " + FormatNumber(k_hi) + " um";
   if (lambda.size() < 2) {
     Fail(path + ": " + ranges + "; they share fewer than two wavelengths of the n grid");
   }
   if (lambda.size() < n_table.lambda.size() && warnings != nullptr) {
-    warnings->push_back(path + ": " + ranges + "; only the overlap, " + Number(lambda.front()) +
-                        " to " + Number(lambda.back()) + " um, is used");
+    warnings->push_back(path + ": " + ranges + "; only the overlap, " +
+                        FormatNumber(lambda.front()) + " to " + FormatNumber(lambda.back()) +
+                        " um, is used");
   }
   return MakeSpectrum(path, lambda, n, k, 1000.0, "wavelength_um");
 }
 
-NkSpectrum ParseYaml(const std::string& path, const std::string& text,
-                     std::vector<std::string>* warnings) {
+// The DATA entries of a refractiveindex.info file; list_at names the DATA line.
+std::vector<Entry> YamlEntries(const std::string& path, const std::string& text,
+                               std::string* list_at_out) {
   YAML::Node root;
   try {
     root = YAML::Load(text);
@@ -393,9 +354,32 @@ NkSpectrum ParseYaml(const std::string& path, const std::string& text,
     } else if (name == "tabulated k") {
       entries.push_back({EntryKind::kK, number, node});
     } else {
-      Fail(at + " is " + Quote(name) + "; " + std::string(kYamlUnsupported));
+      Fail(at + " is " + Quote(name) + "; " + std::string(kYamlUnsupported) +
+           (name.rfind("formula", 0) == 0
+                ? " (formulas are not evaluated: download the tabulated n, k from "
+                  "refractiveindex.info instead)"
+                : ""));
     }
   }
+  *list_at_out = list_at;
+  return entries;
+}
+
+std::string EntriesHeld(const std::vector<Entry>& entries) {
+  std::string held;
+  for (const Entry& entry : entries) {
+    if (!held.empty()) held += ", ";
+    held += entry.kind == EntryKind::kNk  ? "'tabulated nk'"
+            : entry.kind == EntryKind::kN ? "'tabulated n'"
+                                          : "'tabulated k'";
+  }
+  return held;
+}
+
+NkSpectrum ParseYaml(const std::string& path, const std::string& text,
+                     std::vector<std::string>* warnings) {
+  std::string list_at;
+  const std::vector<Entry> entries = YamlEntries(path, text, &list_at);
   const auto count = [&entries](EntryKind kind) {
     return std::count_if(entries.begin(), entries.end(),
                          [kind](const Entry& e) { return e.kind == kind; });
@@ -418,14 +402,35 @@ NkSpectrum ParseYaml(const std::string& path, const std::string& text,
         ReadYamlTable(path, text, find(EntryKind::kK), Columns{{"wavelength_um", "k"}}, warnings);
     return JoinNK(path, n_table, k_table, warnings);
   }
-  std::string held;
-  for (const Entry& entry : entries) {
-    if (!held.empty()) held += ", ";
-    held += entry.kind == EntryKind::kNk  ? "'tabulated nk'"
-            : entry.kind == EntryKind::kN ? "'tabulated n'"
-                                          : "'tabulated k'";
+  Fail(list_at + "DATA holds " + EntriesHeld(entries) + "; " + std::string(kYamlUnsupported) +
+       (entries.size() == 1 && entries[0].kind != EntryKind::kNk
+            ? " (a file with one of them alone pairs with one holding the other: "
+              "\"n_file\" and \"k_file\" of a data set sample)"
+            : ""));
+}
+
+// The table of a file holding one `tabulated n` (or `tabulated k`) entry and nothing else.
+Table ReadSingleTabulated(const std::string& path, EntryKind kind,
+                          std::vector<std::string>* warnings) {
+  const std::string text = ReadFileText(path);
+  const char* wanted = kind == EntryKind::kN ? "'tabulated n'" : "'tabulated k'";
+  try {
+    std::string list_at;
+    const std::vector<Entry> entries = YamlEntries(path, text, &list_at);
+    if (entries.size() != 1 || entries[0].kind != kind) {
+      Fail(list_at + "DATA holds " + EntriesHeld(entries) + "; expected " + wanted +
+           " alone (this file is the " + (kind == EntryKind::kN ? "n" : "k") + " file of a pair)");
+    }
+    return ReadYamlTable(path, text, entries[0],
+                         Columns{{"wavelength_um", kind == EntryKind::kN ? "n" : "k"}}, warnings);
+  } catch (const Error&) {
+    throw;
+  } catch (const YAML::Exception& e) {
+    Fail((MarkLine(e.mark) > 0 ? path + ":" + std::to_string(MarkLine(e.mark)) : path) +
+         ": invalid YAML: " + e.msg);
+  } catch (const std::exception& e) {
+    Fail(path + ": cannot read: " + e.what());
   }
-  Fail(list_at + "DATA holds " + held + "; " + std::string(kYamlUnsupported));
 }
 
 // Any exception from yaml-cpp or the standard library becomes an Error naming the file.
@@ -443,40 +448,560 @@ NkSpectrum ParseYamlGuarded(const std::string& path, const std::string& text,
   }
 }
 
-// ---- CSV ----
+// ---- delimited text ----
 
-NkSpectrum ParseCsv(const std::string& path, std::string_view text,
-                    std::vector<std::string>* warnings) {
-  if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);  // UTF-8 byte order mark
-  const Columns columns{{"lambda_nm", "n", "k"}};
-  Locator where;
-  where.path = path;
-  std::vector<Row> rows;
-  bool header_seen = false;
-  int line_number = 0;
-  int index = 0;
-  for (std::string_view line : Lines(text)) {
-    ++line_number;
-    const std::string_view trimmed = Trim(line);
-    if (trimmed.empty() || trimmed.front() == '#') continue;
-    if (!header_seen) {
-      std::string header;
-      for (char c : Lower(trimmed)) {
-        if (!IsBlank(c)) header += c;
+// The abscissa of a delimited file and how to turn it into nm.
+enum class Unit { kNm, kUm, kAngstrom, kEv, kWavenumber };
+
+double NmFrom(Unit unit, double value) {
+  switch (unit) {
+    case Unit::kNm:
+      return value;
+    case Unit::kUm:
+      return value * 1000.0;
+    case Unit::kAngstrom:
+      return value * 0.1;
+    case Unit::kEv:
+      return LambdaNmFromOmegaEv(value);
+    case Unit::kWavenumber:
+      return 1e7 / value;  // 1 cm = 1e7 nm
+  }
+  return value;
+}
+
+// A column name in lower case, with the non-ASCII spellings of units and symbols made
+// ASCII (µ, μ -> u; Å -> angstrom; ε -> eps; superscript minus and digits; subscripts)
+// and every other byte that is not a letter or digit made a separator.
+std::vector<std::string> NameTokens(std::string_view name) {
+  static const std::pair<std::string_view, std::string_view> kSpellings[] = {
+      {"\xC2\xB5", "u"},          {"\xCE\xBC", "u"},
+      {"\xC3\x85", " angstrom "}, {"\xE2\x84\xAB", " angstrom "},
+      {"\xC3\xA5", " angstrom "}, {"\xCE\xB5", "eps"},
+      {"\xCF\xB5", "eps"},        {"\xE2\x81\xBB", "-"},
+      {"\xC2\xB9", "1"},          {"\xC2\xB2", "2"},
+      {"\xE2\x82\x81", "1"},      {"\xE2\x82\x82", "2"},
+  };
+  std::string ascii;
+  for (std::size_t i = 0; i < name.size();) {
+    bool replaced = false;
+    for (const auto& [from, to] : kSpellings) {
+      if (name.substr(i, from.size()) == from) {
+        ascii += to;
+        i += from.size();
+        replaced = true;
+        break;
       }
-      if (header != kCsvHeader) {
-        Fail(where.At(line_number) + "expected the header '" + std::string(kCsvHeader) +
-             "', found " + Quote(trimmed));
-      }
-      header_seen = true;
-      where.block_line = line_number;
+    }
+    if (replaced) continue;
+    const char c = name[i++];
+    ascii += (c >= 'A' && c <= 'Z') ? static_cast<char>(c - 'A' + 'a') : c;
+  }
+  std::vector<std::string> tokens;
+  std::string token;
+  for (const char c : ascii) {
+    if ((c >= 'a' && c <= 'z') || (c >= '0' && c <= '9')) {
+      token += c;
+    } else if (!token.empty()) {
+      tokens.push_back(std::move(token));
+      token.clear();
+    }
+  }
+  if (!token.empty()) tokens.push_back(std::move(token));
+  return tokens;
+}
+
+bool OneOf(const std::string& token, std::initializer_list<std::string_view> words) {
+  return std::find(words.begin(), words.end(), token) != words.end();
+}
+
+enum class Quantity { kNone, kWavelength, kEnergy, kWavenumber };
+
+// What a header column says about the abscissa.
+struct AbscissaName {
+  bool is_abscissa = false;  // a quantity or a unit is named
+  bool has_unit = false;
+  Unit unit = Unit::kNm;
+  std::string problem;  // why it cannot be used, when is_abscissa && !has_unit
+};
+
+AbscissaName ClassifyAbscissa(std::string_view name) {
+  const std::vector<std::string> tokens = NameTokens(name);
+  Quantity quantity = Quantity::kNone;
+  for (const std::string& t : tokens) {
+    if (OneOf(t, {"wavelength", "wavelengths", "lambda", "lamda", "lam", "wl", "wave"})) {
+      quantity = Quantity::kWavelength;
+    } else if (OneOf(t, {"energy", "photon", "photonenergy", "e", "hv", "hnu"})) {
+      quantity = Quantity::kEnergy;
+    } else if (OneOf(t, {"wavenumber", "wavenumbers", "wn", "nu"})) {
+      quantity = Quantity::kWavenumber;
+    }
+  }
+  AbscissaName result;
+  std::vector<std::string> others;
+  for (std::size_t i = 0; i < tokens.size(); ++i) {
+    const std::string& t = tokens[i];
+    const bool cm_minus_1 = (t == "cm" && i + 1 < tokens.size() && tokens[i + 1] == "1") ||
+                            (t == "1" && i + 1 < tokens.size() && tokens[i + 1] == "cm");
+    Unit unit = Unit::kNm;
+    Quantity implied = Quantity::kNone;
+    if (OneOf(t, {"nm", "nanometer", "nanometers", "nanometre", "nanometres"})) {
+      unit = Unit::kNm;
+      implied = Quantity::kWavelength;
+    } else if (OneOf(t, {"um", "mum", "micron", "microns", "micrometer", "micrometers",
+                         "micrometre", "micrometres"})) {
+      unit = Unit::kUm;
+      implied = Quantity::kWavelength;
+    } else if (OneOf(t, {"angstrom", "angstroms", "ang", "aa"}) ||
+               (t == "a" && quantity == Quantity::kWavelength)) {
+      unit = Unit::kAngstrom;
+      implied = Quantity::kWavelength;
+    } else if (t == "ev") {
+      unit = Unit::kEv;
+      implied = Quantity::kEnergy;
+    } else if (cm_minus_1 || OneOf(t, {"cm1", "kayser"})) {
+      unit = Unit::kWavenumber;
+      implied = Quantity::kWavenumber;
+      if (cm_minus_1) ++i;
+    } else {
+      others.push_back(t);
       continue;
     }
-    rows.push_back(ParseRow(SplitCommas(trimmed), columns, ',', where, line_number, ++index));
+    if (result.has_unit) {
+      result.is_abscissa = true;
+      result.has_unit = false;
+      result.problem = "names two units";
+      return result;
+    }
+    if (quantity != Quantity::kNone && quantity != implied) {
+      result.is_abscissa = true;
+      result.problem = "names a quantity and a unit that do not match";
+      return result;
+    }
+    result.is_abscissa = true;
+    result.has_unit = true;
+    result.unit = unit;
   }
-  if (!header_seen) Fail(path + ": no data");
-  const Table table = FinishRows(rows, columns, where, warnings);
-  return MakeSpectrum(path, table.lambda, table.values[0], table.values[1], 1.0, "lambda_nm");
+  if (!result.is_abscissa && quantity != Quantity::kNone) {
+    result.is_abscissa = true;
+    std::string unknown;
+    for (const std::string& t : others) {
+      if (OneOf(t, {"wavelength", "wavelengths", "lambda", "lamda", "lam", "wl", "wave", "energy",
+                    "photon", "photonenergy", "e", "hv", "hnu", "wavenumber", "wavenumbers", "wn",
+                    "nu"})) {
+        continue;
+      }
+      unknown += (unknown.empty() ? "" : " ") + t;
+    }
+    result.problem =
+        unknown.empty() ? "gives no unit" : "has the unit " + Quote(unknown) + ", not one known";
+  }
+  return result;
+}
+
+// What a header column says about the values: n, k, eps1 or eps2 of a sample (tag).
+enum class ValueKind { kOther, kN, kK, kEps1, kEps2 };
+
+struct ValueName {
+  ValueKind kind = ValueKind::kOther;
+  std::string tag;  // "" for a lone n, "6" for n6 and n_6
+};
+
+ValueName ClassifyValue(std::string_view name) {
+  std::string joined;
+  for (const std::string& t : NameTokens(name)) joined += (joined.empty() ? "" : "_") + t;
+  static const std::regex kN("n(?:_?([0-9]+)|_(.+))?");
+  static const std::regex kK("(?:k|kappa)(?:_?([0-9]+)|_(.+))?");
+  static const std::regex kEps1(
+      "(?:(?:e|eps|epsilon)_?(?:1|r|re|real)|re_(?:e|eps|epsilon))(?:_(.+))?");
+  static const std::regex kEps2(
+      "(?:(?:e|eps|epsilon)_?(?:2|i|im|imag)|im_(?:e|eps|epsilon))(?:_(.+))?");
+  std::smatch match;
+  ValueName result;
+  if (std::regex_match(joined, match, kN)) {
+    result.kind = ValueKind::kN;
+    result.tag = match[1].matched ? match[1].str() : match[2].str();
+  } else if (std::regex_match(joined, match, kK)) {
+    result.kind = ValueKind::kK;
+    result.tag = match[1].matched ? match[1].str() : match[2].str();
+  } else if (std::regex_match(joined, match, kEps1)) {
+    result.kind = ValueKind::kEps1;
+    result.tag = match[1].str();
+  } else if (std::regex_match(joined, match, kEps2)) {
+    result.kind = ValueKind::kEps2;
+    result.tag = match[1].str();
+  }
+  return result;
+}
+
+// The fields of a line: split at delimiter (' ' meaning runs of blanks), each trimmed;
+// trailing empty fields (a trailing delimiter) dropped.
+std::vector<std::string_view> SplitFields(std::string_view line, char delimiter) {
+  std::vector<std::string_view> fields;
+  if (delimiter == ' ') {
+    fields = SplitWhitespace(line);
+  } else {
+    std::size_t start = 0;
+    while (true) {
+      const std::size_t at = line.find(delimiter, start);
+      fields.push_back(
+          Trim(line.substr(start, at == std::string_view::npos ? line.npos : at - start)));
+      if (at == std::string_view::npos) break;
+      start = at + 1;
+    }
+  }
+  while (!fields.empty() && fields.back().empty()) fields.pop_back();
+  return fields;
+}
+
+// Header fields; with whitespace between fields, a unit in brackets ("Wavelength (nm)")
+// stays with the name before it.
+std::vector<std::string> SplitHeader(std::string_view line, char delimiter) {
+  std::vector<std::string> names;
+  for (std::string_view field : SplitFields(line, delimiter)) {
+    if (delimiter == ' ' && !names.empty() && (field.front() == '(' || field.front() == '[')) {
+      names.back() += " " + std::string(field);
+    } else {
+      names.emplace_back(field);
+    }
+  }
+  return names;
+}
+
+char DelimiterOf(std::string_view line) {
+  if (line.find('\t') != std::string_view::npos) return '\t';
+  if (line.find(';') != std::string_view::npos) return ';';
+  if (line.find(',') != std::string_view::npos) return ',';
+  return ' ';
+}
+
+std::string DelimiterName(char delimiter) {
+  switch (delimiter) {
+    case '\t':
+      return "tab";
+    case ';':
+      return "semicolon";
+    case ',':
+      return "comma";
+  }
+  return "whitespace";
+}
+
+// A field with a decimal comma ("0,5", "-1,25e-3") written with '.'; other fields as they
+// are. Only applied where the delimiter is not a comma, so the comma cannot be one.
+std::string DecimalPoint(std::string_view field, char delimiter) {
+  std::string text(field);
+  if (delimiter == ',' || text.find('.') != std::string::npos) return text;
+  static const std::regex kDecimalComma("[+-]?[0-9]+,[0-9]+([eE][+-]?[0-9]+)?");
+  if (std::regex_match(text, kDecimalComma)) text[text.find(',')] = '.';
+  return text;
+}
+
+// True when the line is at least two numbers and nothing else.
+bool IsNumberRow(std::string_view line) {
+  const char delimiter = DelimiterOf(line);
+  const std::vector<std::string_view> fields = SplitFields(line, delimiter);
+  if (fields.size() < 2) return false;
+  double value = 0;
+  for (std::string_view field : fields) {
+    if (!ParseFiniteDouble(DecimalPoint(field, delimiter), &value) && !IsNonFiniteWord(field)) {
+      return false;
+    }
+  }
+  return true;
+}
+
+std::string JoinNames(const std::vector<std::string>& names, char delimiter) {
+  std::string text;
+  for (const std::string& name : names) {
+    if (!text.empty()) text += delimiter == ' ' ? ' ' : delimiter;
+    text += name;
+  }
+  return text;
+}
+
+constexpr std::string_view kHeaderAdvice =
+    "the first column must name the abscissa and its unit (e.g. 'wavelength_nm', "
+    "'Wavelength (nm)', 'wl_um', 'lambda (A)', 'Energy (eV)', 'wavenumber (cm-1)')";
+constexpr std::string_view kColumnsAdvice =
+    "choose the columns with --columns N,K (a data set sample: \"columns\": [\"n6\", "
+    "\"k6\"]), by header name or 1-based column number";
+
+// The column chosen by spec (a header name or a 1-based number), 0-based.
+std::size_t ResolveColumn(const std::string& spec, const std::vector<std::string>& names,
+                          const std::string& at) {
+  const std::string_view trimmed = Trim(spec);
+  if (!trimmed.empty() &&
+      std::all_of(trimmed.begin(), trimmed.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+    const std::size_t number = trimmed.size() > 6 ? 0 : std::stoul(std::string(trimmed));
+    if (number < 1 || number > names.size()) {
+      Fail(at + "column " + Quote(trimmed) + " does not exist: the header has " +
+           std::to_string(names.size()) + " columns");
+    }
+    return number - 1;
+  }
+  for (const bool ignore_case : {false, true}) {
+    std::vector<std::size_t> found;
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      if (ignore_case ? Lower(names[i]) == Lower(trimmed) : names[i] == trimmed) {
+        found.push_back(i);
+      }
+    }
+    if (found.size() == 1) return found.front();
+    if (found.size() > 1) {
+      Fail(at + "the header has " + std::to_string(found.size()) + " columns named " +
+           Quote(trimmed) + "; choose by 1-based column number");
+    }
+  }
+  Fail(at + "no column named " + Quote(trimmed) + " in the header " +
+       Quote(JoinNames(names, ','), 120));
+}
+
+// The header and the columns to read.
+struct Layout {
+  int header_line = 0;
+  char delimiter = ',';
+  std::vector<std::string> names;
+  std::size_t abscissa = 0;
+  Unit unit = Unit::kNm;
+  std::size_t value[2] = {0, 0};
+  bool eps = false;
+};
+
+Layout ChooseColumns(const std::string& path, const std::vector<std::string>& names,
+                     int header_line, char delimiter, const NkColumns& columns) {
+  const std::string at = path + ":" + std::to_string(header_line) + ": ";
+  const std::string header = Quote(JoinNames(names, delimiter == ' ' ? ' ' : ','), 120);
+  Layout layout;
+  layout.header_line = header_line;
+  layout.delimiter = delimiter;
+  layout.names = names;
+  bool found = false;
+  for (std::size_t i = 0; i < names.size() && !found; ++i) {
+    const AbscissaName abscissa = ClassifyAbscissa(names[i]);
+    if (!abscissa.is_abscissa) continue;
+    if (!abscissa.has_unit) {
+      Fail(at + "header column " + Quote(names[i]) + " " + abscissa.problem + "; " +
+           std::string(kHeaderAdvice));
+    }
+    layout.abscissa = i;
+    layout.unit = abscissa.unit;
+    found = true;
+  }
+  if (!found) {
+    Fail(at + "the header " + header + " names no wavelength, energy or wavenumber column; " +
+         std::string(kHeaderAdvice));
+  }
+
+  if (!columns.empty()) {
+    if (columns.n.empty() || columns.k.empty()) {
+      Fail(at + "a column choice needs both the n and the k column");
+    }
+    layout.value[0] = ResolveColumn(columns.n, names, at);
+    layout.value[1] = ResolveColumn(columns.k, names, at);
+    for (const std::size_t v : layout.value) {
+      if (v == layout.abscissa) {
+        Fail(at + "column " + Quote(names[v]) + " is the abscissa, not n or k");
+      }
+    }
+    if (layout.value[0] == layout.value[1]) {
+      Fail(at + "n and k are both column " + Quote(names[layout.value[0]]));
+    }
+    const ValueKind first = ClassifyValue(names[layout.value[0]]).kind;
+    const ValueKind second = ClassifyValue(names[layout.value[1]]).kind;
+    layout.eps = first == ValueKind::kEps1 && second == ValueKind::kEps2;
+    const bool nk = (first == ValueKind::kN || first == ValueKind::kOther) &&
+                    (second == ValueKind::kK || second == ValueKind::kOther);
+    if (!layout.eps && !nk) {
+      Fail(at + "columns " + Quote(names[layout.value[0]]) + " and " +
+           Quote(names[layout.value[1]]) +
+           " are neither n and k nor eps1 and eps2 (give n then k, or eps1 then eps2)");
+    }
+    return layout;
+  }
+
+  // Pairs of columns with the same sample tag.
+  struct Pair {
+    std::size_t first, second;
+    bool eps;
+    std::string tag;
+  };
+  std::vector<Pair> pairs;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (i == layout.abscissa) continue;
+    const ValueName a = ClassifyValue(names[i]);
+    if (a.kind != ValueKind::kN && a.kind != ValueKind::kEps1) continue;
+    const ValueKind partner = a.kind == ValueKind::kN ? ValueKind::kK : ValueKind::kEps2;
+    for (std::size_t j = 0; j < names.size(); ++j) {
+      const ValueName b = ClassifyValue(names[j]);
+      if (j != layout.abscissa && b.kind == partner && b.tag == a.tag) {
+        pairs.push_back({i, j, a.kind == ValueKind::kEps1, a.tag});
+        break;
+      }
+    }
+  }
+  // n,k and eps1,eps2 of the same single sample: the same data, read as n and k.
+  if (pairs.size() == 2 && pairs[0].tag == pairs[1].tag && pairs[0].eps != pairs[1].eps) {
+    pairs.erase(pairs[0].eps ? pairs.begin() : pairs.begin() + 1);
+  }
+  if (pairs.empty()) {
+    Fail(at + "the header " + header +
+         " has no n,k (or eps1,eps2) column pair; name them 'n' and 'k' (or 'e1' and 'e2') "
+         "in the header, or " +
+         std::string(kColumnsAdvice));
+  }
+  if (pairs.size() > 1) {
+    std::string list;
+    for (std::size_t p = 0; p < pairs.size() && p < 6; ++p) {
+      list += (p ? ", " : "") + names[pairs[p].first] + "/" + names[pairs[p].second];
+    }
+    if (pairs.size() > 6) list += ", ...";
+    Fail(at + "the header holds " + std::to_string(pairs.size()) + " column pairs (" + list +
+         "), one per sample; " + std::string(kColumnsAdvice));
+  }
+  layout.value[0] = pairs[0].first;
+  layout.value[1] = pairs[0].second;
+  layout.eps = pairs[0].eps;
+  return layout;
+}
+
+NkSpectrum ParseDelimited(const std::string& path, std::string_view text, const NkColumns& columns,
+                          std::vector<std::string>* warnings) {
+  if (text.substr(0, 2) == "\xFF\xFE" || text.substr(0, 2) == "\xFE\xFF") {
+    Fail(path +
+         ":1: the file is UTF-16 text; save it as UTF-8 (or ASCII) so that its header "
+         "and rows can be read");
+  }
+  if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);  // UTF-8 byte order mark
+  const std::vector<std::string_view> lines = Lines(text);
+  const auto is_comment = [](std::string_view t) { return !t.empty() && t.front() == '#'; };
+
+  // The first row of numbers, and the header above it.
+  std::size_t first_row = lines.size();
+  int first_text = 0;
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    const std::string_view t = Trim(lines[i]);
+    if (t.empty() || is_comment(t)) continue;
+    if (first_text == 0) first_text = static_cast<int>(i) + 1;
+    if (IsNumberRow(t)) {
+      first_row = i;
+      break;
+    }
+  }
+  if (first_text == 0) Fail(path + ": no data");
+  if (first_row == lines.size()) {
+    Fail(path + ":" + std::to_string(first_text) + ": no data rows (no line of numbers under a " +
+         "header; the first line is " + Quote(Trim(lines[first_text - 1])) + ")");
+  }
+  const int row_line = static_cast<int>(first_row) + 1;
+  const char delimiter = DelimiterOf(Trim(lines[first_row]));
+  const std::size_t width = SplitFields(Trim(lines[first_row]), delimiter).size();
+  int header_line = 0;
+  std::vector<std::string> names;
+  for (std::size_t i = first_row; i-- > 0;) {
+    std::string_view t = Trim(lines[i]);
+    if (t.empty()) continue;
+    const bool comment = is_comment(t);
+    while (!t.empty() && t.front() == '#') t.remove_prefix(1);
+    std::vector<std::string> candidate = SplitHeader(Trim(t), delimiter);
+    const bool names_abscissa =
+        std::any_of(candidate.begin(), candidate.end(),
+                    [](const std::string& name) { return ClassifyAbscissa(name).is_abscissa; });
+    if (!comment || names_abscissa) {
+      header_line = static_cast<int>(i) + 1;
+      names = std::move(candidate);
+      break;
+    }
+  }
+  if (header_line == 0) {
+    Fail(path + ":" + std::to_string(row_line) +
+         ": no header line above the first row of numbers; add one naming the columns, "
+         "e.g. 'wavelength_nm,n,k' or 'energy_eV,e1,e2' (" +
+         std::string(kHeaderAdvice) + ")");
+  }
+  const std::string header_at = path + ":" + std::to_string(header_line) + ": ";
+  if (names.size() != width) {
+    Fail(path + ":" + std::to_string(row_line) + ": expected " + std::to_string(names.size()) +
+         " columns (" + JoinNames(names, delimiter) + ", " + DelimiterName(delimiter) +
+         "-separated, as the header on line " + std::to_string(header_line) + "), found " +
+         std::to_string(width));
+  }
+  const Layout layout = ChooseColumns(path, names, header_line, delimiter, columns);
+
+  const std::string unit_name = names[layout.abscissa];
+  const std::string n_name = names[layout.value[0]];
+  const std::string k_name = names[layout.value[1]];
+  const Columns described{{unit_name, n_name, k_name}};
+  Locator where;
+  where.path = path;
+  where.block_line = header_line;
+  std::vector<Row> rows;
+  int index = 0;
+  for (std::size_t i = first_row; i < lines.size(); ++i) {
+    const std::string_view t = Trim(lines[i]);
+    if (t.empty() || is_comment(t)) continue;
+    const int line = static_cast<int>(i) + 1;
+    const std::string at = where.At(line);
+    const std::vector<std::string_view> fields = SplitFields(t, delimiter);
+    if (fields.size() != names.size()) {
+      Fail(at + "expected " + std::to_string(names.size()) + " columns (" +
+           JoinNames(names, delimiter == ' ' ? ' ' : delimiter) + "), found " +
+           std::to_string(fields.size()));
+    }
+    Row row;
+    row.line = line;
+    row.index = ++index;
+    const auto field = [&](std::size_t column) { return DecimalPoint(fields[column], delimiter); };
+    row.lambda = ParseField(field(layout.abscissa), unit_name, at);
+    if (!(row.lambda > 0)) {
+      Fail(at + unit_name + " = " + FormatNumber(row.lambda) + " is not positive");
+    }
+    const double a = ParseField(field(layout.value[0]), n_name, at);
+    const double b = ParseField(field(layout.value[1]), k_name, at);
+    if (layout.eps) {
+      if (b < 0) {
+        Fail(at + k_name + " = " + FormatNumber(b) +
+             " is negative (an absorbing medium has eps2 >= 0)");
+      }
+      if (!(std::abs(a) <= kMaxOpticalConstant * kMaxOpticalConstant &&
+            b <= kMaxOpticalConstant * kMaxOpticalConstant)) {
+        Fail(at + "eps = " + FormatNumber(a) + " + " + FormatNumber(b) + "i is implausibly large");
+      }
+      const Complex<double> nk = IndexFromPermittivity(Complex<double>{a, b});
+      row.values[0] = nk.re;
+      row.values[1] = nk.im;
+    } else {
+      row.values[0] = a;
+      row.values[1] = b;
+    }
+    CheckOpticalConstant(row.values[0], layout.eps ? "n (from eps)" : n_name, at);
+    CheckOpticalConstant(row.values[1], layout.eps ? "k (from eps)" : k_name, at);
+    rows.push_back(row);
+  }
+  const Table table = FinishRows(rows, described, where, warnings, /*either_direction=*/true);
+
+  // To nm; energy and wavenumber run against wavelength.
+  const bool reversed = layout.unit == Unit::kEv || layout.unit == Unit::kWavenumber;
+  const std::size_t count = table.lambda.size();
+  std::vector<double> lambda_nm(count), n(count), k(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::size_t from = reversed ? count - 1 - i : i;
+    lambda_nm[i] = NmFrom(layout.unit, table.lambda[from]);
+    n[i] = table.values[0][from];
+    k[i] = table.values[1][from];
+  }
+  return MakeSpectrum(path, lambda_nm, n, k, 1.0, "wavelength_nm");
+}
+
+// Any exception from the standard library becomes an Error naming the file.
+NkSpectrum ParseDelimitedGuarded(const std::string& path, std::string_view text,
+                                 const NkColumns& columns, std::vector<std::string>* warnings) {
+  try {
+    return ParseDelimited(path, text, columns, warnings);
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    Fail(path + ": cannot read: " + e.what());
+  }
 }
 
 // True when text looks like a refractiveindex.info YAML file: a line starting "DATA:".
@@ -493,26 +1018,67 @@ std::string Extension(const std::string& path) {
 
 }  // namespace
 
-NkSpectrum ReadNkFile(const std::string& path, std::vector<std::string>* warnings) {
-  const std::string extension = Extension(path);
-  if (extension == ".yml" || extension == ".yaml") {
-    return ReadRefractiveIndexYaml(path, warnings);
+NkColumns ParseNkColumns(const std::string& text) {
+  const std::size_t comma = text.find(',');
+  NkColumns columns;
+  if (comma != std::string::npos && text.find(',', comma + 1) == std::string::npos) {
+    columns.n = std::string(Trim(std::string_view(text).substr(0, comma)));
+    columns.k = std::string(Trim(std::string_view(text).substr(comma + 1)));
   }
-  if (extension == ".csv") return ReadNkCsv(path, warnings);
+  if (columns.n.empty() || columns.k.empty()) {
+    Fail("columns " + Quote(text) +
+         ": expected N,K, the n and k (or eps1 and eps2) columns by header name or 1-based "
+         "number, e.g. 'n6,k6' or '2,3'");
+  }
+  return columns;
+}
+
+NkSpectrum ReadNkFile(const std::string& path, std::vector<std::string>* warnings) {
+  return ReadNkFile(path, NkColumns{}, warnings);
+}
+
+NkSpectrum ReadNkFile(const std::string& path, const NkColumns& columns,
+                      std::vector<std::string>* warnings) {
+  const std::string extension = Extension(path);
+  const bool yaml_extension = extension == ".yml" || extension == ".yaml";
+  const bool text_extension =
+      extension == ".csv" || extension == ".txt" || extension == ".dat" || extension == ".tsv";
   const std::string text = ReadFileText(path);
-  if (LooksLikeRefractiveIndexYaml(text)) return ParseYamlGuarded(path, text, warnings);
+  const bool yaml = yaml_extension || (extension != ".csv" && LooksLikeRefractiveIndexYaml(text));
+  if (yaml) {
+    if (!columns.empty()) {
+      Fail(path + ": a column choice (" + columns.n + "," + columns.k +
+           ") applies to delimited text files, not to refractiveindex.info YAML");
+    }
+    return ParseYamlGuarded(path, text, warnings);
+  }
+  if (text_extension) return ParseDelimitedGuarded(path, text, columns, warnings);
   Fail(path + ": cannot tell the format from the extension " +
        (extension.empty() ? std::string("(none)") : Quote(extension)) +
-       "; expected .yml, .yaml or .csv");
+       "; expected .yml or .yaml (refractiveindex.info), or .csv, .txt, .dat or .tsv "
+       "(delimited text)");
 }
 
 NkSpectrum ReadRefractiveIndexYaml(const std::string& path, std::vector<std::string>* warnings) {
   return ParseYamlGuarded(path, ReadFileText(path), warnings);
 }
 
+NkSpectrum ReadNkDelimited(const std::string& path, const NkColumns& columns,
+                           std::vector<std::string>* warnings) {
+  return ParseDelimitedGuarded(path, ReadFileText(path), columns, warnings);
+}
+
 NkSpectrum ReadNkCsv(const std::string& path, std::vector<std::string>* warnings) {
-  const std::string text = ReadFileText(path);
-  return ParseCsv(path, text, warnings);
+  return ReadNkDelimited(path, NkColumns{}, warnings);
+}
+
+NkSpectrum ReadNkPair(const std::string& n_path, const std::string& k_path,
+                      std::vector<std::string>* warnings) {
+  const Table n_table = ReadSingleTabulated(n_path, EntryKind::kN, warnings);
+  const Table k_table = ReadSingleTabulated(k_path, EntryKind::kK, warnings);
+  NkSpectrum spectrum = JoinNK(n_path + " and " + k_path, n_table, k_table, warnings);
+  spectrum.source = n_path;
+  return spectrum;
 }
 
 std::string NkCsvText(const std::vector<double>& lambda_nm, const std::vector<double>& n,

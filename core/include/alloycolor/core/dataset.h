@@ -2,7 +2,15 @@
 //   {"system": {"a": "Au", "b": "Ag"}, "composition": "atomic_fraction_a",
 //    "samples": [{"x": 0.5, "file": "Rioux-Au50Ag50.yml"}, ...]}
 // "composition" is "atomic_fraction_a" or "weight_fraction_a"; "file" is relative to the
-// manifest's folder or absolute. Optional: "name", "source", "notes".
+// manifest's folder or absolute. Optional: "name", "source", "notes", and
+//  - "elements": {"Pd": {"valence": 0.36, "density_g_cm3": 12.0, "atomic_mass": 106.42}}
+//    overrides the element table (composition.h) for the system's elements, any subset of
+//    the three keys, each a positive number;
+//  - per sample, "columns": ["n6", "k6"] (header names or 1-based column numbers) chooses
+//    the sample's columns in a delimited file holding several (io.h);
+//  - per sample, "n_file" and "k_file" instead of "file": refractiveindex.info files
+//    holding `tabulated n` and `tabulated k` alone, paired (ReadNkPair).
+// Unknown keys at the top level and in samples are warnings; in "elements", errors.
 #ifndef ALLOYCOLOR_CORE_DATASET_H_
 #define ALLOYCOLOR_CORE_DATASET_H_
 
@@ -10,16 +18,20 @@
 #include <vector>
 
 #include "alloycolor/core/composition.h"
+#include "alloycolor/core/io.h"
 #include "alloycolor/core/spectrum.h"
 
 namespace alloycolor {
 
 struct Sample {
-  double x_atomic;      // atomic fraction of element a
-  double x_given;       // as written in the manifest
-  std::string file;     // as written in the manifest
-  std::string path;     // resolved path
-  std::string checksum; // Fnv1a64Hex of the file's bytes
+  double x_atomic;       // atomic fraction of element a
+  double x_given;        // as written in the manifest
+  std::string file;      // as written in the manifest ("a.csv (columns n6,k6)",
+                         // "n.yml + k.yml" for a pair)
+  std::string path;      // resolved path (of the n file for a pair)
+  std::string k_path;    // resolved path of the k file of a pair; empty otherwise
+  NkColumns columns;     // the manifest's "columns"; empty when not given
+  std::string checksum;  // Fnv1a64Hex of the file's bytes
   NkSpectrum nk;
 };
 
@@ -27,8 +39,8 @@ struct Dataset {
   std::string manifest_path;
   std::string name;
   AlloySystem system;
-  std::string composition;       // "atomic_fraction_a" or "weight_fraction_a"
-  std::vector<Sample> samples;   // sorted by x_atomic, at most one per composition
+  std::string composition;      // "atomic_fraction_a" or "weight_fraction_a"
+  std::vector<Sample> samples;  // sorted by x_atomic, at most one per composition
   std::vector<std::string> warnings;
 };
 

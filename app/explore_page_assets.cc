@@ -536,7 +536,6 @@ function verdict(de) {
 }
 
 // ---- Plots.
-const SVGNS = "http://www.w3.org/2000/svg";
 function niceTicks(lo, hi, count) {
   const span = hi - lo || 1, raw = span / count, mag = Math.pow(10, Math.floor(Math.log10(raw)));
   const step = [1, 2, 2.5, 5, 10].map((s) => s * mag).find((s) => span / s <= count) || 10 * mag;

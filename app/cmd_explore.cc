@@ -238,7 +238,8 @@ void RegisterExplore(CLI::App& app) {
                   "Finishes offered for the pictures, as GGX roughness alpha 0-1, "
                   "comma-separated (0, polished, is always included)")
       ->capture_default_str();
-  cmd->add_option("--size", o->size, "Width and height in pixels of each sphere and ring picture")
+  cmd->add_option("--size", o->size,
+                  "Width and height in pixels of each sphere and ring picture (64-1024)")
       ->capture_default_str();
   cmd->add_option("--tolerance", o->tolerance,
                   "Largest CIEDE2000 error allowed while choosing the table's density")

@@ -41,7 +41,7 @@ header .model { color: var(--muted); }
 .seg button[aria-pressed="true"] { background: var(--accent); color: #1b1a17; font-weight: 600; }
 input[type=range] { accent-color: var(--accent); }
 #angle { width: 150px; }
-#angle-value { width: 52px; }
+#angle-value { width: 66px; }
 input[type=number], input[type=text] { background: var(--panel2); color: var(--text);
   border: 1px solid var(--line); border-radius: 6px; padding: 4px 7px; font: inherit; }
 input.bad { border-color: #c0504d; }

@@ -96,6 +96,7 @@ void RegisterValidate(CLI::App& app);
 void RegisterChart(CLI::App& app);
 void RegisterParams(CLI::App& app);
 void RegisterSweep(CLI::App& app);
+void RegisterExplore(CLI::App& app);
 
 }  // namespace alloycolor::app
 

@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
   alloycolor::app::RegisterChart(app);
   alloycolor::app::RegisterParams(app);
   alloycolor::app::RegisterSweep(app);
+  alloycolor::app::RegisterExplore(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -96,15 +96,21 @@ namespace alloycolor::color {
 
 double DeltaE00Sigma(const Colorimeter& colorimeter, const AlloyModel& model,
                      double x_atomic, double angle_deg, int draws) {
-  if (!model.HasUncertainty() || draws <= 0) return -1.0;
+  return DeltaE00Sigma(colorimeter, model, x_atomic, std::vector<double>{angle_deg}, draws)[0];
+}
+
+std::vector<double> DeltaE00Sigma(const Colorimeter& colorimeter, const AlloyModel& model,
+                                  double x_atomic, const std::vector<double>& angles_deg,
+                                  int draws) {
+  std::vector<double> sigma(angles_deg.size(), -1.0);
+  if (!model.HasUncertainty() || draws <= 0) return sigma;
   const std::vector<double> grid =
       EvaluationGrid(colorimeter, model.lambda_min_nm(), model.lambda_max_nm(),
                      "the " + model.method() + " model");
-  const Lab central =
-      LabFromXYZ(MaterialXYZ(colorimeter, model.Index(x_atomic, grid), angle_deg),
-                 colorimeter.White());
-  double sum = 0;
+  const std::vector<std::complex<double>> central_index = model.Index(x_atomic, grid);
   const auto eps_draws = model.PermittivityDraws(x_atomic, grid, draws);
+  if (eps_draws.empty()) return sigma;
+  std::vector<std::vector<std::complex<double>>> indices;
   for (const auto& eps : eps_draws) {
     std::vector<std::complex<double>> index(eps.size());
     for (size_t i = 0; i < eps.size(); ++i) {
@@ -112,12 +118,21 @@ double DeltaE00Sigma(const Colorimeter& colorimeter, const AlloyModel& model,
           IndexFromPermittivity(Complex<double>{eps[i].real(), eps[i].imag()});
       index[i] = {nk.re, nk.im};
     }
-    const Lab lab =
-        LabFromXYZ(MaterialXYZ(colorimeter, index, angle_deg), colorimeter.White());
-    const double de = DeltaE00(central, lab);
-    sum += de * de;
+    indices.push_back(std::move(index));
   }
-  return eps_draws.empty() ? -1.0 : std::sqrt(sum / eps_draws.size());
+  for (size_t a = 0; a < angles_deg.size(); ++a) {
+    const Lab central =
+        LabFromXYZ(MaterialXYZ(colorimeter, central_index, angles_deg[a]), colorimeter.White());
+    double sum = 0;
+    for (const auto& index : indices) {
+      const Lab lab =
+          LabFromXYZ(MaterialXYZ(colorimeter, index, angles_deg[a]), colorimeter.White());
+      const double de = DeltaE00(central, lab);
+      sum += de * de;
+    }
+    sigma[a] = std::sqrt(sum / indices.size());
+  }
+  return sigma;
 }
 
 }  // namespace alloycolor::color

@@ -141,6 +141,67 @@ Background BackgroundFromName(const std::string& name) {
   throw Error("unknown background '" + name + "' (transparent, backdrop)");
 }
 
+NormalMap TraceNormals(Shape shape, int size) {
+  if (size < 1 || size > kMaxTileSize) {
+    throw Error("image size " + std::to_string(size) + " lies outside 1-" +
+                std::to_string(kMaxTileSize) + " pixels");
+  }
+  const double scale = kObjectFraction * size;
+  const double half = 0.5 * size;
+  const Geometry geometry(shape);
+  const auto intersect = [&](double px, double py) {
+    return geometry.Intersect((px - half) / scale, (half - py) / scale);
+  };
+  NormalMap map;
+  map.size = size;
+  map.normal.assign(static_cast<std::size_t>(size) * size * 3, 0.0f);
+  map.coverage.assign(static_cast<std::size_t>(size) * size, 0.0f);
+  std::vector<CornerHit> corners(static_cast<std::size_t>(size + 1) * (size + 1));
+  for (int j = 0; j <= size; ++j) {
+    for (int i = 0; i <= size; ++i) {
+      const Hit hit = intersect(i, j);
+      corners[static_cast<std::size_t>(j) * (size + 1) + i] = {hit.hit, hit.t};
+    }
+  }
+  for (int j = 0; j < size; ++j) {
+    const CornerHit* top = &corners[static_cast<std::size_t>(j) * (size + 1)];
+    const CornerHit* bottom = top + size + 1;
+    for (int i = 0; i < size; ++i) {
+      const std::size_t p = static_cast<std::size_t>(j) * size + i;
+      const Hit centre = intersect(i + 0.5, j + 0.5);
+      bool edge = false;
+      for (const CornerHit* corner : {&top[i], &top[i + 1], &bottom[i], &bottom[i + 1]}) {
+        if (corner->hit != centre.hit ||
+            (centre.hit && std::abs(corner->t - centre.t) > kDepthJump)) {
+          edge = true;
+        }
+      }
+      Vec3 normal = centre.normal;
+      double coverage = centre.hit ? 1.0 : 0.0;
+      if (edge) {
+        Vec3 sum{0.0, 0.0, 0.0};
+        int hits = 0;
+        for (int b = 0; b < kEdgeSamples; ++b) {
+          for (int a = 0; a < kEdgeSamples; ++a) {
+            const Hit hit = intersect(i + (a + 0.5) / kEdgeSamples, j + (b + 0.5) / kEdgeSamples);
+            if (!hit.hit) continue;
+            sum = sum + hit.normal;
+            ++hits;
+          }
+        }
+        coverage = static_cast<double>(hits) / (kEdgeSamples * kEdgeSamples);
+        if (!centre.hit && hits > 0) normal = Normalize(sum);
+      }
+      if (coverage == 0.0) normal = {0.0, 0.0, 1.0};
+      map.normal[3 * p] = static_cast<float>(normal.x);
+      map.normal[3 * p + 1] = static_cast<float>(normal.y);
+      map.normal[3 * p + 2] = static_cast<float>(std::max(0.0, normal.z));
+      map.coverage[p] = static_cast<float>(coverage);
+    }
+  }
+  return map;
+}
+
 Renderer::Renderer(const color::Colorimeter& colorimeter, const RenderOptions& options)
     : colorimeter_(colorimeter), options_(options), environment_(options.lighting) {
   CheckOptions(options_);

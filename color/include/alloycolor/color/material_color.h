@@ -61,6 +61,11 @@ nlohmann::json ColorJson(const ColorResult& color);
 // repeatable). Returns a negative value for a model without uncertainty.
 double DeltaE00Sigma(const Colorimeter& colorimeter, const AlloyModel& model,
                      double x_atomic, double angle_deg, int draws = kUncertaintyDraws);
+// The same at several angles from one set of draws (each value equals the single-angle
+// call's).
+std::vector<double> DeltaE00Sigma(const Colorimeter& colorimeter, const AlloyModel& model,
+                                  double x_atomic, const std::vector<double>& angles_deg,
+                                  int draws = kUncertaintyDraws);
 
 // "#rrggbb".
 std::string HexColor(const std::array<std::uint8_t, 3>& srgb8);

@@ -69,6 +69,19 @@ struct RenderOptions {
   int threads = 0;  // 0: one per hardware thread
 };
 
+// What a page needs to shade a tile itself: for each pixel, the unit normal n (n.z >= 0:
+// the first surface the centre ray meets faces the camera) and the coverage in [0, 1],
+// found exactly as Render finds them (the same geometry, the same outline test and 4 x 4
+// samples on edges). Where the centre ray misses but samples hit, the normal is the
+// normalised mean of theirs. Uncovered pixels have coverage 0 and normal (0, 0, 1).
+struct NormalMap {
+  int size = 0;
+  std::vector<float> normal;    // size * size * 3, top row first
+  std::vector<float> coverage;  // size * size
+};
+// Throws Error for a size outside 1-kMaxTileSize.
+NormalMap TraceNormals(Shape shape, int size);
+
 class Renderer {
  public:
   // Checks the options (Error naming the one at fault) and prepares the environment

@@ -19,7 +19,7 @@ namespace {
 struct FitOptions {
   std::string data_dir;
   std::string exclude_text;
-  std::string method = "smooth";
+  std::string method = "auto";
   std::string terms = "auto";
   std::string out;
   std::string from;
@@ -117,12 +117,29 @@ void Run(const FitOptions& o) {
   settings.lambda_step_nm = o.lambda_step;
   settings.start = old_model.get();
   settings.progress = ProgressPrinter(o.quiet);
+  const color::Colorimeter colorimeter = LoadColorimeter("D65", 2);
+  settings.colorimeter = &colorimeter;
   const std::unique_ptr<AlloyModel> model = fit::BuildModel(o.method, dataset, settings);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!o.quiet) {
     for (const auto& w : model->warnings()) Warn(w);
     const FitSummary& stats = model->fit_summary();
+    if (stats.selection.present()) {
+      std::fprintf(stderr, "alloycolor: auto: leave-one-out %s on the training samples:\n",
+                   stats.selection.metric.c_str());
+      for (const MethodScore& m : stats.selection.scores) {
+        if (m.error.empty()) {
+          std::fprintf(stderr, "alloycolor:   %-11s mean %.4g, worst %.4g (%d folds)%s\n",
+                       m.method.c_str(), m.mean, m.max, m.folds,
+                       m.method == model->method() ? "  <- chosen" : "");
+        } else {
+          std::fprintf(stderr, "alloycolor:   %-11s not scored: %s\n", m.method.c_str(),
+                       m.error.c_str());
+        }
+      }
+      std::fprintf(stderr, "alloycolor: auto chose %s\n", stats.selection.reason.c_str());
+    }
     if (stats.present()) {
       std::fprintf(stderr,
                    "alloycolor: %s fit: degree %d, final cost %.6g, %d iterations, %s, "
@@ -154,7 +171,11 @@ void RegisterFit(CLI::App& app) {
       ->required();
   cmd->add_option("--exclude", o->exclude_text,
                   "Leave out the samples at these compositions (comma-separated)");
-  cmd->add_option("--method", o->method, MethodsHelp())->capture_default_str();
+  cmd->add_option("--method", o->method,
+                  "auto (default: every method scored by leave-one-composition-out on the "
+                  "data, the best chosen and the table kept in the model file); " +
+                      MethodsHelp())
+      ->capture_default_str();
   cmd->add_option("--out", o->out, "Model file to write (written atomically)")->required();
   cmd->add_option("--from", o->from,
                   "Refit: start from this earlier model and report what changed");

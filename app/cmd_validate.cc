@@ -22,7 +22,7 @@ struct ValidateOptions {
   std::string data_dir;
   std::string holdout_text;
   bool loo = false;
-  std::string methods = "paper,eps-linear,smooth";
+  std::string methods = "paper,eps-linear,eps-pchip,eps-spline,smooth";
   std::string angles = "0,45";
   std::string illuminant = "D65";
   int observer = 2;
@@ -108,9 +108,15 @@ std::vector<std::vector<double>> Splits(const ValidateOptions& o, const Dataset&
 
 std::vector<std::string> ParseMethods(const std::string& text) {
   std::vector<std::string> methods;
-  for (const std::string& m : SplitList(text)) {
+  std::vector<std::string> names = SplitList(text);
+  if (text == "all") {
+    names.clear();
+    for (const MethodInfo& m : Methods()) names.push_back(m.name);
+    names.push_back(fit::kAutoMethod);
+  }
+  for (const std::string& m : names) {
     if (m.empty()) throw Error("--methods: empty method name in '" + text + "'");
-    RequireMethod(m);
+    if (m != fit::kAutoMethod) RequireMethod(m);
     if (std::find(methods.begin(), methods.end(), m) == methods.end()) methods.push_back(m);
   }
   if (methods.empty()) throw Error("--methods: no method given");
@@ -172,8 +178,11 @@ void Run(const ValidateOptions& o) {
     for (const std::string& w : dataset.warnings) Warn(w);
   }
   validate::ValidationOptions options;
-  options.build = [](const std::string& method, const Dataset& training) {
-    return fit::BuildModel(method, training);
+  const color::Colorimeter d65 = LoadColorimeter("D65", 2);
+  options.build = [&d65](const std::string& method, const Dataset& training) {
+    fit::FitSettings settings;
+    settings.colorimeter = &d65;
+    return fit::BuildModel(method, training, settings);
   };
   options.methods = ParseMethods(o.methods);
   options.angles_deg = ParseNumberList(o.angles, "--angles");
@@ -227,7 +236,9 @@ void RegisterValidate(CLI::App& app) {
                   "the manifest's numbers or 75at%, 75wt%, 18k)");
   cmd->add_flag("--loo", o->loo,
                 "Leave one out: hold out each interior sample in turn (the default)");
-  cmd->add_option("--methods", o->methods, "Methods to compare, comma-separated")
+  cmd->add_option("--methods", o->methods,
+                  "Methods to compare, comma-separated, or all (every method and auto, which "
+                  "runs its own leave-one-out inside every fold: slow with physical)")
       ->capture_default_str();
   cmd->add_option("--angles", o->angles, "Angles of incidence for colour, degrees")
       ->capture_default_str();

@@ -118,7 +118,7 @@ void ModelSource::AddOptions(CLI::App* cmd, bool with_data) {
                     "Data set: folder with dataset.json, a manifest, or a bundled set's name "
                     "(Au-Ag, Cu-Zn, Nb-Sn)");
     cmd->add_option("--method", method,
-                    "Model built from --data: " + MethodsHelp())
+                    "Model built from --data: auto (chosen by leave-one-out), " + MethodsHelp())
         ->capture_default_str();
   }
   cmd->add_flag("--extrapolate", extrapolate,
@@ -137,6 +137,8 @@ std::unique_ptr<AlloyModel> ModelSource::Load(bool quiet) const {
     }
     fit::FitSettings settings;
     settings.progress = ProgressPrinter(quiet);
+    const color::Colorimeter colorimeter = LoadColorimeter("D65", 2);
+    settings.colorimeter = &colorimeter;
     auto model = fit::BuildModel(method, dataset, settings);
     if (!quiet) {
       for (const std::string& w : model->warnings()) Warn(w);

@@ -523,6 +523,10 @@ std::string ValidationHtml(const ValidationReport& report) {
       html << "<p class=\"note\">" << EscapeXml(method) << " could not be built: " << EscapeXml(error)
            << "</p>";
     }
+    for (const auto& [method, choice] : split.choices) {
+      html << "<p class=\"note\"><b>" << EscapeXml(method) << "</b> chose " << EscapeXml(choice)
+           << "</p>";
+    }
     for (const auto& [method, warnings] : split.warnings) {
       if (warnings.empty()) continue;
       html << "<details><summary class=\"meta\">" << EscapeXml(method) << ": " << warnings.size()

@@ -35,6 +35,7 @@ nlohmann::json ValidationJson(const ValidationReport& report) {
     nlohmann::json split = {{"train_x", s.train_x}, {"holdout_x", s.holdout_x}};
     if (!s.errors.empty()) split["errors"] = s.errors;
     split["warnings"] = s.warnings;
+    split["choices"] = s.choices;
     nlohmann::json drude = nlohmann::json::array();
     for (const DrudeCurve& c : s.drude) {
       nlohmann::json curve = {{"lambda_nm", c.lambda_nm}};

@@ -82,7 +82,8 @@ TEST_F(AuAgHoldout, ReportJsonHasTheDocumentedShape) {
   EXPECT_EQ(r["format"], "alloycolor-validation");
   EXPECT_TRUE(r["data"].is_string());
   EXPECT_NE(r["data"].get<std::string>().find("Au-Ag"), std::string::npos);
-  EXPECT_EQ(r["methods"], nlohmann::json({"paper", "eps-linear", "smooth"}));
+  EXPECT_EQ(r["methods"],
+            nlohmann::json({"paper", "eps-linear", "eps-pchip", "eps-spline", "smooth"}));
   EXPECT_EQ(r["mode"], "holdout");
   EXPECT_TRUE(r["delta_e00_available"].get<bool>());
   ASSERT_EQ(r["holdouts"].size(), 2u);

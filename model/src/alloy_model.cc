@@ -176,6 +176,23 @@ nlohmann::json AlloyModel::ToJson() const {
     fit["termination"] = fit_summary_.termination;
     fit["rms_relative_eps"] = fit_summary_.rms_relative_eps;
   }
+  if (fit_summary_.selection.present()) {
+    nlohmann::json scores = nlohmann::json::array();
+    for (const MethodScore& m : fit_summary_.selection.scores) {
+      nlohmann::json row = {{"method", m.method}, {"folds", m.folds}};
+      if (m.error.empty()) {
+        row["mean"] = m.mean;
+        row["max"] = m.max;
+      } else {
+        row["error"] = m.error;
+      }
+      scores.push_back(row);
+    }
+    fit["selection"] = {{"by", "auto: leave-one-composition-out on the training samples"},
+                        {"metric", fit_summary_.selection.metric},
+                        {"reason", fit_summary_.selection.reason},
+                        {"scores", scores}};
+  }
   doc["fit"] = fit;
   doc["warnings"] = warnings_;
   return doc;
@@ -258,9 +275,30 @@ void AlloyModel::ReadCommon(const nlohmann::json& doc) {
       fit_summary_.rms_relative_eps =
           Number(Field(fit, "rms_relative_eps", "fit"), "fit.rms_relative_eps");
     }
+    if (fit.contains("selection")) {
+      const nlohmann::json& sel = fit.at("selection");
+      MethodSelection& selection = fit_summary_.selection;
+      selection.metric = String(Field(sel, "metric", "fit.selection"), "fit.selection.metric");
+      selection.reason = String(Field(sel, "reason", "fit.selection"), "fit.selection.reason");
+      const nlohmann::json& scores = Field(sel, "scores", "fit.selection");
+      if (!scores.is_array()) throw Error("fit.selection.scores: expected an array");
+      for (size_t i = 0; i < scores.size(); ++i) {
+        const std::string where = "fit.selection.scores[" + std::to_string(i) + "]";
+        MethodScore m;
+        m.method = String(Field(scores[i], "method", where), where + ".method");
+        m.folds = static_cast<int>(Number(Field(scores[i], "folds", where), where + ".folds"));
+        if (scores[i].contains("error")) {
+          m.error = String(scores[i].at("error"), where + ".error");
+        } else {
+          m.mean = Number(Field(scores[i], "mean", where), where + ".mean");
+          m.max = Number(Field(scores[i], "max", where), where + ".max");
+        }
+        selection.scores.push_back(m);
+      }
+    }
     fit_summary_.details = fit;
     for (const char* key : {"method", "degree", "final_cost", "iterations", "converged",
-                            "termination", "rms_relative_eps"}) {
+                            "termination", "rms_relative_eps", "selection"}) {
       fit_summary_.details.erase(key);
     }
   }

@@ -28,6 +28,14 @@ const std::vector<MethodInfo>& Methods() {
        &ReadSampleModel<SampleModel::Kind::kPaper>},
       {"eps-linear", "eps interpolated linearly in composition at every wavelength",
        &ReadSampleModel<SampleModel::Kind::kEpsLinear>},
+      {"eps-pchip",
+       "eps1 and eps2 interpolated in composition by a monotone cubic (PCHIP) at every "
+       "wavelength",
+       &ReadSampleModel<SampleModel::Kind::kEpsPchip>},
+      {"eps-spline",
+       "eps1 and eps2 interpolated in composition by a natural cubic spline at every "
+       "wavelength",
+       &ReadSampleModel<SampleModel::Kind::kEpsSpline>},
       {"smooth",
        "Ceres fit of ln gamma and ln wp^2 (tau, m*) as smooth functions of composition at "
        "every wavelength",

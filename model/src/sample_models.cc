@@ -9,6 +9,7 @@
 #include "alloycolor/core/io.h"
 #include "alloycolor/model/optics.h"
 #include "alloycolor/core/units.h"
+#include "alloycolor/model/interpolation.h"
 
 namespace alloycolor {
 namespace {
@@ -140,7 +141,17 @@ void SampleModel::Diagnose() {
 }
 
 std::string SampleModel::method() const {
-  return kind_ == Kind::kPaper ? "paper" : "eps-linear";
+  switch (kind_) {
+    case Kind::kPaper:
+      return "paper";
+    case Kind::kEpsLinear:
+      return "eps-linear";
+    case Kind::kEpsPchip:
+      return "eps-pchip";
+    case Kind::kEpsSpline:
+      return "eps-spline";
+  }
+  return "";
 }
 
 std::vector<std::complex<double>> SampleModel::Permittivity(
@@ -148,8 +159,18 @@ std::vector<std::complex<double>> SampleModel::Permittivity(
   CheckLambda(lambda_nm);
   std::vector<std::complex<double>> eps(lambda_nm.size());
   for (size_t i = 0; i < lambda_nm.size(); ++i) {
-    eps[i] = kind_ == Kind::kPaper ? PaperAt(x_atomic, lambda_nm[i])
-                                   : EpsLinearAt(x_atomic, lambda_nm[i]);
+    switch (kind_) {
+      case Kind::kPaper:
+        eps[i] = PaperAt(x_atomic, lambda_nm[i]);
+        break;
+      case Kind::kEpsLinear:
+        eps[i] = EpsLinearAt(x_atomic, lambda_nm[i]);
+        break;
+      case Kind::kEpsPchip:
+      case Kind::kEpsSpline:
+        eps[i] = EpsCubicAt(x_atomic, lambda_nm[i]);
+        break;
+    }
   }
   return eps;
 }
@@ -161,6 +182,19 @@ std::complex<double> SampleModel::EpsLinearAt(double x, double lambda_nm) const 
   if (b.t == 0.0) return EpsOf(nodes_[b.lo].nk, lambda_nm);
   if (b.t == 1.0) return EpsOf(nodes_[b.hi].nk, lambda_nm);
   return Lerp(EpsOf(nodes_[b.lo].nk, lambda_nm), EpsOf(nodes_[b.hi].nk, lambda_nm), b.t);
+}
+
+std::complex<double> SampleModel::EpsCubicAt(double x, double lambda_nm) const {
+  std::vector<double> xs, e1, e2;
+  for (const Node& node : nodes_) {
+    const std::complex<double> e = EpsOf(node.nk, lambda_nm);
+    xs.push_back(node.x);
+    e1.push_back(e.real());
+    e2.push_back(e.imag());
+  }
+  const Interpolation scheme =
+      kind_ == Kind::kEpsPchip ? Interpolation::kPchip : Interpolation::kNaturalSpline;
+  return {Interpolant(scheme, xs, e1)(x), Interpolant(scheme, std::move(xs), e2)(x)};
 }
 
 bool SampleModel::PaperTauMass(double x, double lambda_nm, TauMass* out) const {
@@ -228,8 +262,12 @@ nlohmann::json SampleModel::ParametersJson() const {
                        {"n", node.nk.n},
                        {"k", node.nk.k}});
   }
-  return {{"interpolation", kind_ == Kind::kPaper ? "tau and m* linear in x (eq. 11, 12, 7)"
-                                                  : "eps linear in x"},
+  const char* interpolation = kind_ == Kind::kPaper      ? "tau and m* linear in x (eq. 11, 12, 7)"
+                              : kind_ == Kind::kEpsLinear ? "eps linear in x"
+                              : kind_ == Kind::kEpsPchip
+                                  ? "eps1, eps2 monotone cubic (PCHIP) in x"
+                                  : "eps1, eps2 natural cubic spline in x";
+  return {{"interpolation", interpolation},
           {"samples", samples}};
 }
 

@@ -339,6 +339,9 @@ ValidationReport ComputeValidation(const Dataset& dataset,
         continue;
       }
       split.warnings[method] = model->warnings();
+      if (model->fit_summary().selection.present()) {
+        split.choices[method] = model->fit_summary().selection.reason;
+      }
       FillDrudeCurves(*model, method, dataset.system, &split.drude);
       for (HoldoutResult& h : report.holdouts) {
         if (h.split != static_cast<int>(s)) continue;

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "alloycolor/color/colorimetry.h"
 #include "alloycolor/core/dataset.h"
 #include "alloycolor/core/progress.h"
 #include "alloycolor/model/alloy_model.h"
@@ -28,12 +29,26 @@ struct FitSettings {
   bool covariance = true;
   const AlloyModel* start = nullptr;  // refit: start from this model (same method)
   ProgressCallback progress;          // may be empty
+  // auto (required there): the colorimeter its leave-one-out scores colour with, at normal
+  // incidence; data without colour (infrared) are scored by reflectance.
+  const color::Colorimeter* colorimeter = nullptr;
 };
 
 struct MethodBuilder {
   std::string name;  // as in Methods()
   std::unique_ptr<AlloyModel> (*build)(const Dataset& dataset, const FitSettings& settings);
 };
+
+// "auto", the default of `alloycolor fit`: every other method is scored by leave-one-
+// composition-out over the interior samples (each held out in turn, the method built on
+// the rest; mean CIEDE2000 at normal incidence, or reflectance RMS for data without colour);
+// the lowest mean wins, a method within 2 % of a simpler one's score gives way to it
+// (simplest first: eps-linear, eps-pchip, eps-spline, paper, smooth, physical). With fewer
+// than three compositions nothing can be held out and eps-pchip is chosen (with two samples
+// every interpolation is the straight line). The model of the chosen method, built on all
+// samples, carries the table (FitSummary::selection).
+inline constexpr const char* kAutoMethod = "auto";
+std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings& settings);
 
 // One builder per entry of Methods(), in the same order.
 const std::vector<MethodBuilder>& Builders();

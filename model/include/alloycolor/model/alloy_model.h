@@ -34,6 +34,22 @@ inline constexpr const char* kModelFormatName = "alloycolor-model";
 // How a fitted model was fitted, as recorded in the model file's "fit" block: the fields
 // every fitted method has, typed, and the method's own further statistics in `details`
 // (written beside them). Baselines built without a fit have none (present() is false).
+// How `--method auto` chose the method of a model: every candidate's leave-one-
+// composition-out score on the training data (the metric says which), lowest wins.
+struct MethodScore {
+  std::string method;
+  double mean = 0;    // mean of the metric over the folds
+  double max = 0;     // worst fold
+  int folds = 0;
+  std::string error;  // non-empty: the candidate could not be scored (why)
+};
+struct MethodSelection {
+  std::string metric;  // "delta_e00 (normal incidence, D65, 2 deg)" or "reflectance_rms"
+  std::string reason;  // why the chosen one was chosen, one line
+  std::vector<MethodScore> scores;
+  bool present() const { return !reason.empty(); }
+};
+
 struct FitSummary {
   std::string solver;  // "method" in the file: the solver and its linear algebra
   int degree = -1;     // composition degree (the smooth model's, or each parameter's)
@@ -43,6 +59,7 @@ struct FitSummary {
   std::string termination;
   double rms_relative_eps = 0;  // RMS of (eps_model - eps) / |eps| over the data
   nlohmann::json details = nlohmann::json::object();
+  MethodSelection selection;  // set when the method was chosen by `auto`
 
   bool present() const { return !solver.empty(); }
 };

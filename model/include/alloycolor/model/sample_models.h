@@ -9,6 +9,8 @@
 //    inverted, eps is interpolated linearly instead. Known samples are reproduced exactly.
 //  - "eps-linear": eps interpolated linearly in x between neighbouring samples; the
 //    obvious baseline the fitted models must beat.
+//  - "eps-pchip": eps1 and eps2 each interpolated in x by a monotone cubic (PCHIP), and
+//    "eps-spline": by a natural cubic spline (interpolation.h): the strongest simple rivals.
 //
 // Both interpolate each sample's n, k linearly in wavelength. Outside the samples' x range
 // they extrapolate linearly from the two nearest samples (the caller decides whether
@@ -27,7 +29,7 @@ namespace alloycolor {
 
 class SampleModel : public AlloyModel {
  public:
-  enum class Kind { kPaper, kEpsLinear };
+  enum class Kind { kPaper, kEpsLinear, kEpsPchip, kEpsSpline };
 
   // Throws Error when the data set has fewer than two samples or no common wavelength
   // range.
@@ -61,6 +63,7 @@ class SampleModel : public AlloyModel {
   void Diagnose();
   std::complex<double> PaperAt(double x, double lambda_nm) const;
   std::complex<double> EpsLinearAt(double x, double lambda_nm) const;
+  std::complex<double> EpsCubicAt(double x, double lambda_nm) const;
 
   Kind kind_;
   std::vector<Node> nodes_;  // sorted by x

@@ -96,6 +96,8 @@ struct SplitResult {
   std::vector<double> train_x, holdout_x;
   std::map<std::string, std::string> errors;                 // method -> why it could not be built
   std::map<std::string, std::vector<std::string>> warnings;  // method -> its warnings
+  // method -> what it chose on this split's training samples (auto: the method and why)
+  std::map<std::string, std::string> choices;
   std::vector<DrudeCurve> drude;
 };
 

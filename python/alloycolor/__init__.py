@@ -315,20 +315,24 @@ def color(source, x=None, angle_deg=0.0, illuminant="D65", observer=2, sigma=Fal
     obs = np.asarray(observer)
     if obs.dtype.kind not in "iuf" or np.any(obs != np.round(obs)):
         raise Error("observer: %r is not 2 or 10" % (observer,))
-    xs, ang, ill, obs = np.broadcast_arrays(xs, np.asarray(angle_deg, dtype=float), ill, obs)
+    xs, ang, ill_b, obs_b = np.broadcast_arrays(xs, np.asarray(angle_deg, dtype=float), ill, obs)
     shape = xs.shape
     n = xs.size
     flat_x, flat_a = xs.ravel(), ang.ravel()
-    flat_i, flat_o = ill.ravel(), obs.ravel().astype(int)
+    flat_i, flat_o = ill_b.ravel(), obs_b.ravel().astype(int)
     out = {key: np.zeros((n, 3), dtype=np.uint8 if key == "srgb8" else float)
            for key in _COLOR_KEYS}
     sig = np.zeros(n)
     any_sigma = False
-    groups = {}
-    for i in range(n):
-        groups.setdefault((str(flat_i[i]), int(flat_o[i])), []).append(i)
-    if len(groups) == 1:
-        groups = {next(iter(groups)): slice(None)}
+    if ill.ndim == 0 and obs.ndim == 0:  # one colorimeter: no grouping needed
+        groups = {(str(ill), int(obs)): slice(None)}
+    else:
+        pairs, inverse = np.unique(np.char.add(np.char.add(flat_i.astype(str), "/"),
+                                               flat_o.astype(str)), return_inverse=True)
+        groups = {}
+        for j, key in enumerate(pairs):
+            name, deg = key.rsplit("/", 1)
+            groups[(name, int(deg))] = np.nonzero(inverse == j)[0]
     for (ill_name, obs_deg), idx in groups.items():
         if is_model:
             r = source._core._color(np.ascontiguousarray(flat_x[idx]),

@@ -295,3 +295,14 @@ def test_progress_is_reported_and_gil_released(au_ag):
     seen = []
     model = ac.fit(au_ag, "smooth", progress=seen.append)
     assert model.method == "smooth" and seen and all(isinstance(m, str) for m in seen)
+
+
+def test_illuminants_and_observers_broadcast(au_ag):
+    model = ac.fit(au_ag, "eps-linear")
+    c = model.color(0.6, illuminant=["D65", "A", "F11"], observer=[[2], [10]])
+    assert c["xyz"].shape == (2, 3, 3)
+    for i, obs in enumerate((2, 10)):
+        for j, ill in enumerate(("D65", "A", "F11")):
+            one = model.color(0.6, illuminant=ill, observer=obs)
+            np.testing.assert_array_equal(c["xyz"][i, j], one["xyz"])
+    assert c["xyz"][0, 0, 1] != c["xyz"][0, 1, 1]

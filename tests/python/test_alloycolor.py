@@ -291,7 +291,7 @@ def test_interrupted_work_leaves_nothing_written(au_ag, tmp_path):
     assert target.read_text() == before and sorted(os.listdir(tmp_path)) == ["model.json"]
 
 
-def test_progress_is_reported_and_gil_released(au_ag):
+def test_progress_messages_reach_the_callback(au_ag):
     seen = []
     model = ac.fit(au_ag, "smooth", progress=seen.append)
     assert model.method == "smooth" and seen and all(isinstance(m, str) for m in seen)

@@ -1,14 +1,21 @@
 #include <algorithm>
+#include <cstdio>
 #include <sstream>
 
 #include "alloycolor/color/material_color.h"
 #include "alloycolor/core/markup.h"
 #include "report.h"
-#include "report_metrics.h"
 
 namespace alloycolor::app {
 
 namespace {
+
+// printf-formatted number.
+std::string Num(double v, const char* format = "%g") {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, format, v);
+  return buf;
+}
 
 struct ChartLayout {
   int swatch, gap, margin;
@@ -39,8 +46,8 @@ std::string ChartSvg(const CompositionChart& chart) {
   svg << "<text x=\"" << width / 2 << "\" y=\"20\" text-anchor=\"middle\" font-size=\"15\" "
       << "font-weight=\"bold\">" << EscapeXml(chart.system) << ": colour by composition</text>\n";
   svg << "<text x=\"" << width / 2 << "\" y=\"37\" text-anchor=\"middle\" font-size=\"11\" "
-      << "fill=\"#555\">" << EscapeXml(chart.method) << " model; " << EscapeXml(chart.illuminant) << ", "
-      << chart.observer_deg << "\u00b0 observer, incidence " << Num(chart.angle_deg)
+      << "fill=\"#555\">" << EscapeXml(chart.method) << " model; " << EscapeXml(chart.illuminant)
+      << ", " << chart.observer_deg << "\u00b0 observer, incidence " << Num(chart.angle_deg)
       << "\u00b0; sRGB</text>\n";
   const char* unit = chart.weight_labels ? "wt%" : "at%";
   for (int i = 0; i < n; ++i) {

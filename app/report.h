@@ -1,6 +1,6 @@
-// The validation report and the composition chart as documents: JSON, a self-contained
-// HTML page with inline SVG plots, an SVG chart and the chart's swatches as an image.
-// These only format what validate/ computed (validate/validation.h, validate/chart.h).
+// The composition chart as documents: an SVG chart and the chart's swatches as an image.
+// These only format what validate/ computed (validate/chart.h); the validation report's
+// JSON and HTML writers live in validate/report.h, shared with the Python module.
 #ifndef ALLOYCOLOR_APP_REPORT_H_
 #define ALLOYCOLOR_APP_REPORT_H_
 
@@ -9,6 +9,7 @@
 
 #include "alloycolor/render/image.h"
 #include "alloycolor/validate/chart.h"
+#include "alloycolor/validate/report.h"
 #include "alloycolor/validate/validation.h"
 
 namespace alloycolor::app {
@@ -18,15 +19,9 @@ using validate::DrudeCurve;
 using validate::HoldoutResult;
 using validate::MethodResult;
 using validate::SplitResult;
+using validate::ValidationHtml;
+using validate::ValidationJson;
 using validate::ValidationReport;
-
-// {"format": "alloycolor-validation", "version": 1, "data": ..., "methods": [...],
-//  "holdouts": [{"x": ..., "results": {METHOD: {"delta_e00": {"0": ...}, ...}}}], ...}
-nlohmann::json ValidationJson(const ValidationReport& report);
-
-// A self-contained HTML page (inline CSS and SVG; no scripts, no external files).
-std::string ValidationHtml(const ValidationReport& report);
-
 
 // SVG with the swatches, the composition under each and the elements at the ends.
 std::string ChartSvg(const CompositionChart& chart);
@@ -34,7 +29,6 @@ std::string ChartSvg(const CompositionChart& chart);
 // The chart without text, for a PNG: swatches of swatch_px squared on white, gap_px between
 // them and around them.
 render::ImageRGBA8 ChartImage(const CompositionChart& chart, int swatch_px, int gap_px);
-
 
 }  // namespace alloycolor::app
 

@@ -4,10 +4,10 @@
 
 #include "alloycolor/color/material_color.h"
 #include "alloycolor/core/markup.h"
-#include "report.h"
+#include "alloycolor/validate/report.h"
 #include "report_metrics.h"
 
-namespace alloycolor::app {
+namespace alloycolor::validate {
 
 namespace {
 
@@ -543,4 +543,4 @@ std::string ValidationHtml(const ValidationReport& report) {
   return html.str();
 }
 
-}  // namespace alloycolor::app
+}  // namespace alloycolor::validate

@@ -1,9 +1,9 @@
 #include <cmath>
 
-#include "report.h"
+#include "alloycolor/validate/report.h"
 #include "report_metrics.h"
 
-namespace alloycolor::app {
+namespace alloycolor::validate {
 
 nlohmann::json ValidationJson(const ValidationReport& report) {
   const bool colour = AnyColour(report);
@@ -127,4 +127,4 @@ nlohmann::json ValidationJson(const ValidationReport& report) {
 
 // ---------------------------------------------------------------------------------------
 
-}  // namespace alloycolor::app
+}  // namespace alloycolor::validate

@@ -6,7 +6,7 @@
 
 #include "alloycolor/color/material_color.h"
 
-namespace alloycolor::app {
+namespace alloycolor::validate {
 
 std::string Num(double v, const char* format) {
   char buf[64];
@@ -139,4 +139,4 @@ std::string ColourRangeText(const ValidationReport& report) {
 }
 
 
-}  // namespace alloycolor::app
+}  // namespace alloycolor::validate

@@ -1,7 +1,7 @@
 // What the report writers share: the metrics as table columns, the winners of a row and the
-// summaries per method (app/report_json.cc, app/report_html.cc, app/chart.cc).
-#ifndef ALLOYCOLOR_APP_REPORT_METRICS_H_
-#define ALLOYCOLOR_APP_REPORT_METRICS_H_
+// summaries per method (validate/src/report_json.cc, report_html.cc).
+#ifndef ALLOYCOLOR_VALIDATE_REPORT_METRICS_H_
+#define ALLOYCOLOR_VALIDATE_REPORT_METRICS_H_
 
 #include <array>
 #include <cstdint>
@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "report.h"
+#include "alloycolor/validate/report.h"
 
-namespace alloycolor::app {
+namespace alloycolor::validate {
 
 inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
@@ -56,6 +56,6 @@ nlohmann::json LabByAngle(const std::vector<double>& angles, const std::vector<c
 // "the colorimeter's grid 360-830 nm ..." for the report.
 std::string ColourRangeText(const ValidationReport& report);
 
-}  // namespace alloycolor::app
+}  // namespace alloycolor::validate
 
-#endif  // ALLOYCOLOR_APP_REPORT_METRICS_H_
+#endif  // ALLOYCOLOR_VALIDATE_REPORT_METRICS_H_

@@ -1,0 +1,384 @@
+"""alloycolor: optical constants, reflectance and colour of binary metal alloys.
+
+Predicts n + ik, the Fresnel reflectance and the CIE colour of a binary alloy at any
+composition from measurements at a few compositions, with the same C++ libraries as the
+``alloycolor`` program (Kuboshima & Furukawa's chain: n, k -> permittivity -> Drude model
+-> Fresnel reflectance, eq. 2-4 -> CIE XYZ, eq. 5 -> CIELAB, sRGB per IEC 61966-2-1).
+
+    >>> import alloycolor as ac
+    >>> data = ac.Dataset("Au-Ag")                      # a bundled data set, or a folder
+    >>> model = ac.fit(data, "smooth")                  # methods: ac.methods()
+    >>> model.nk([0.5, 0.75], [400.0, 550.0, 700.0])    # complex array, shape (2, 3)
+    >>> ac.color(model, x=np.linspace(0, 1, 11))["srgb8"]
+
+Units live in the names: ``x`` is the atomic fraction of the system's first element (strings
+such as ``"75wt%"`` or ``"18k"`` are parsed by ``model.parse_composition``), ``lambda_nm``
+in nanometres, ``angle_deg`` the angle of incidence in degrees. Bad input raises
+:class:`alloycolor.Error` (a ``ValueError``) with the library's one-line message naming the
+file, field or value at fault. Long work runs without the GIL; ``progress`` callbacks receive
+one-line messages, and an exception raised in one stops the work and propagates.
+"""
+
+from __future__ import annotations
+
+import os
+import pathlib
+from typing import Callable, Iterable, Optional, Sequence, Union
+
+import numpy as np
+
+from . import _alloycolor as _core
+from . import _paths
+from ._alloycolor import Error, illuminants
+
+__version__ = _paths.VERSION
+__all__ = [
+    "Error", "Dataset", "Model", "Spectrum", "color", "data_root", "fit", "illuminants",
+    "load_model", "methods", "read_nk", "validate",
+]
+
+
+def _find_data_root() -> str:
+    env = os.environ.get("ALLOYCOLOR_DATA_DIR")
+    if env:
+        return env
+    installed = (pathlib.Path(__file__).resolve().parent / _paths.INSTALLED_DATA_RELPATH)
+    if (installed / "cie").is_dir():
+        return str(installed.resolve())
+    return _paths.SOURCE_DATA_DIR
+
+
+_core._set_data_root(_find_data_root())
+
+
+def data_root() -> str:
+    """The folder holding the bundled data sets and the CIE tables: $ALLOYCOLOR_DATA_DIR,
+    else share/alloycolor/data of the installation, else the source tree's data/."""
+    return _core._data_root()
+
+
+def methods() -> list:
+    """The model methods of the registry: [{"name": ..., "summary": ...}, ...]."""
+    return _core.methods()
+
+
+def _columns_text(columns) -> str:
+    if columns is None:
+        return ""
+    if isinstance(columns, str):
+        return columns
+    parts = [str(c) for c in columns]
+    if len(parts) != 2:
+        raise Error("columns: give two columns (n and k), not %r" % (columns,))
+    return ",".join(parts)
+
+
+class Spectrum:
+    """Measured optical constants: ``lambda_nm`` (increasing), ``n``, ``k`` as numpy arrays
+    and ``nk = n + ik``; ``source`` names the file, ``warnings`` what the reader noticed."""
+
+    def __init__(self, core, warnings=()):
+        self._core = core
+        self.source: str = core.source
+        self.lambda_nm: np.ndarray = core.lambda_nm
+        self.n: np.ndarray = core.n
+        self.k: np.ndarray = core.k
+        self.warnings: list = list(warnings)
+
+    @property
+    def nk(self) -> np.ndarray:
+        return self.n + 1j * self.k
+
+    def color(self, angle_deg=0.0, illuminant="D65", observer=2) -> dict:
+        """Colour of the polished metal; see :func:`alloycolor.color`."""
+        return color(self, angle_deg=angle_deg, illuminant=illuminant, observer=observer)
+
+    def __repr__(self):
+        return "Spectrum(%r, %d wavelengths, %g-%g nm)" % (
+            self.source, len(self.lambda_nm), self.lambda_nm[0], self.lambda_nm[-1])
+
+
+def read_nk(path: Union[str, os.PathLike], columns=None) -> Spectrum:
+    """Reads optical constants: refractiveindex.info YAML or a delimited lab export (CSV,
+    TSV, whitespace; wavelength, energy or wavenumber; n, k or eps1, eps2). ``columns``
+    chooses one n,k pair of a multi-sample file: ``"n6,k6"``, ``("n6", "k6")`` or 1-based
+    ``(2, 3)``. Raises Error naming the file and line on bad input."""
+    core, warnings = _core._read_nk(os.fspath(path), _columns_text(columns))
+    return Spectrum(core, warnings)
+
+
+class Dataset:
+    """An alloy system and its samples: a folder with a ``dataset.json``, the manifest
+    itself, or a bundled set's name (``"Au-Ag"``, ``"Cu-Zn"``, ``"Nb-Sn"``)."""
+
+    def __init__(self, path_or_name: Union[str, os.PathLike, None] = None, *, _core_set=None):
+        if _core_set is None:
+            arg = os.fspath(path_or_name)
+            bundled = pathlib.Path(data_root()) / arg
+            if not os.path.exists(arg) and arg and not os.path.isabs(arg) and bundled.exists():
+                arg = str(bundled)
+            _core_set = _core._Dataset(arg)
+        self._core = _core_set
+
+    name = property(lambda self: self._core.name)
+    system = property(lambda self: self._core.system, doc='"Au-Ag": elements a and b')
+    composition = property(lambda self: self._core.composition)
+    manifest_path = property(lambda self: self._core.manifest_path)
+    warnings = property(lambda self: list(self._core.warnings))
+    x_atomic = property(lambda self: self._core.x_atomic, doc="samples' compositions, sorted")
+
+    @property
+    def samples(self) -> list:
+        """[{"x_atomic", "x_given", "file", "path", "spectrum": Spectrum}, ...]"""
+        out = []
+        for s in self._core.samples:
+            s = dict(s)
+            s["spectrum"] = Spectrum(s["spectrum"])
+            out.append(s)
+        return out
+
+    def _match(self, x) -> float:
+        value = self._core.parse_composition(x) if isinstance(x, str) else float(x)
+        for known in self.x_atomic:
+            if abs(known - value) <= 1e-6:
+                return float(known)
+        raise Error("%s has no sample at x = %s (samples at %s)" % (
+            self.manifest_path, x, ", ".join("%g" % v for v in self.x_atomic)))
+
+    def without(self, x: Iterable) -> "Dataset":
+        """The data set without the samples at compositions x (each must be a sample's)."""
+        return Dataset(_core_set=self._core.without([self._match(v) for v in x]))
+
+    def select(self, x: Iterable) -> "Dataset":
+        """The data set with only the samples at compositions x."""
+        keep = [self._match(v) for v in x]
+        drop = [v for v in self.x_atomic if all(abs(v - k) > 1e-9 for k in keep)]
+        return Dataset(_core_set=self._core.without(drop))
+
+    def fit(self, method: str = "smooth", **options) -> "Model":
+        """Fits a model; see :func:`alloycolor.fit`."""
+        return fit(self, method, **options)
+
+    def __len__(self):
+        return len(self.x_atomic)
+
+    def __repr__(self):
+        return "Dataset(%r, %s, %d samples)" % (self.name, self.system, len(self))
+
+
+def _broadcast_x(model, x) -> np.ndarray:
+    if isinstance(x, str):
+        return np.asarray(model.parse_composition(x), dtype=float)
+    arr = np.asarray(x)
+    if arr.dtype.kind in "US":
+        return np.vectorize(model.parse_composition, otypes=[float])(arr)
+    return np.asarray(arr, dtype=float)
+
+
+class Model:
+    """A fitted or loaded model of permittivity eps(lambda, x). Evaluate with :meth:`nk`,
+    :meth:`permittivity` and :meth:`color`; save with :meth:`save`."""
+
+    def __init__(self, core):
+        self._core = core
+
+    method = property(lambda self: self._core.method)
+    system = property(lambda self: self._core.system)
+    composition = property(lambda self: self._core.composition)
+    x_min = property(lambda self: self._core.x_min)
+    x_max = property(lambda self: self._core.x_max)
+    lambda_min_nm = property(lambda self: self._core.lambda_min_nm)
+    lambda_max_nm = property(lambda self: self._core.lambda_max_nm)
+    warnings = property(lambda self: list(self._core.warnings))
+    has_uncertainty = property(lambda self: self._core.has_uncertainty)
+    training_x = property(lambda self: self._core.training_x)
+
+    def parse_composition(self, text: str) -> float:
+        """x_atomic from "0.75", "75at%", "75wt%" or "18k" (gold alloys)."""
+        return self._core.parse_composition(text)
+
+    def _optics(self, x, lambda_nm, index: bool) -> np.ndarray:
+        xs = _broadcast_x(self, x)
+        lam = np.asarray(lambda_nm, dtype=float)
+        out = self._core._optics(xs.ravel(), lam.ravel(), index)
+        return out.reshape(xs.shape + lam.shape)
+
+    def nk(self, x, lambda_nm) -> np.ndarray:
+        """Complex index N = n + ik (eq. 13, 14, n, k >= 0); shape x.shape + lambda_nm.shape."""
+        return self._optics(x, lambda_nm, True)
+
+    def permittivity(self, x, lambda_nm) -> np.ndarray:
+        """Complex permittivity eps1 + i eps2; shape x.shape + lambda_nm.shape."""
+        return self._optics(x, lambda_nm, False)
+
+    def color(self, x, angle_deg=0.0, illuminant="D65", observer=2, sigma=False,
+              exact=False) -> dict:
+        """Colour at compositions x; see :func:`alloycolor.color`."""
+        return color(self, x, angle_deg=angle_deg, illuminant=illuminant, observer=observer,
+                     sigma=sigma, exact=exact)
+
+    def save(self, path: Union[str, os.PathLike]) -> None:
+        """Writes the versioned JSON model file (atomically: all or nothing)."""
+        self._core.save(os.fspath(path))
+
+    def to_json(self) -> dict:
+        """The model file's content as Python objects."""
+        return self._core.to_json()
+
+    def render(self, x, shape="sphere", size=256, lighting="studio", roughness=0.0,
+               background="backdrop", illuminant="D65", observer=2,
+               linear=False) -> np.ndarray:
+        """An image of a solid (sphere or ring) of the alloy at x: (size, size, 4) uint8
+        sRGBA, or float32 linear sRGB with alpha when ``linear``."""
+        xv = float(_broadcast_x(self, x))
+        return self._core._render(xv, shape, int(size), lighting, float(roughness), background,
+                                  illuminant, int(observer), bool(linear))
+
+    def spectra(self, x, material: Optional[str] = None) -> dict:
+        """n, k on the export grid (360-830 nm, 5 nm): {"lambda_nm", "n", "k", "notes"}."""
+        xv = float(_broadcast_x(self, x))
+        return self._core._spectra(xv, material or self._material(xv))
+
+    def write_spd(self, x, eta_path, k_path, material: Optional[str] = None) -> None:
+        """Writes the eta and k .spd files (wavelength_nm value) pbrt-v4 and Mitsuba 3 read."""
+        xv = float(_broadcast_x(self, x))
+        self._core._write_spd(xv, material or self._material(xv), os.fspath(eta_path),
+                              os.fspath(k_path))
+
+    def _material(self, x: float) -> str:
+        return "%s at x = %.6g (%s model)" % (self.system, x, self.method)
+
+    def __repr__(self):
+        return "Model(%s, %s, x %g-%g, %g-%g nm)" % (
+            self.method, self.system, self.x_min, self.x_max, self.lambda_min_nm,
+            self.lambda_max_nm)
+
+
+def _optional(value, default):
+    return default if value is None else value
+
+
+def fit(dataset: Union[Dataset, str], method: str = "smooth", *, degree: Optional[int] = None,
+        max_degree: int = 6, smoothing: Optional[float] = None, terms: str = "auto",
+        lambda_range_nm: Optional[Sequence[float]] = None, covariance: bool = True,
+        progress: Optional[Callable[[str], None]] = None) -> Model:
+    """Fits ``method`` (see :func:`methods`) to a data set, as ``alloycolor fit`` does.
+
+    degree: composition degree (default: the method's, or chosen by cross-validation);
+    max_degree: the largest degree cross-validation tries (smooth); smoothing: curvature
+    penalty across wavelength (smooth); terms: interband terms (physical);
+    lambda_range_nm: (from, to, step) of the fit grid; covariance: compute the parameter
+    covariance (error bars); progress: called with one-line messages."""
+    if not isinstance(dataset, Dataset):
+        dataset = Dataset(dataset)
+    lo, hi, step = (0.0, 0.0, 0.0) if lambda_range_nm is None else map(float, lambda_range_nm)
+    return Model(_core._fit(dataset._core, method, _optional(degree, -1), int(max_degree),
+                            float(_optional(smoothing, -1.0)), terms, lo, hi, step,
+                            bool(covariance), progress))
+
+
+def load_model(path: Union[str, os.PathLike]) -> Model:
+    """Reads a model file written by ``alloycolor fit --out`` or :meth:`Model.save`."""
+    return Model(_core._load_model(os.fspath(path)))
+
+
+_COLOR_KEYS = ("xyz", "lab", "linear_srgb", "srgb8", "paper_rgb")
+
+
+def color(source, x=None, angle_deg=0.0, illuminant="D65", observer=2, sigma=False,
+          exact=False) -> dict:
+    """Colour of a polished metal: a :class:`Model` at compositions ``x``, or a measured
+    :class:`Spectrum` (or the path of an n,k file).
+
+    x, angle_deg, illuminant ("A", "C", "D50", "D65", "E", "F2", "F11") and observer (2 or
+    10) broadcast together to a shape S. Returns numpy arrays: "xyz" (S + (3,), a perfect
+    reflector has Y = 1), "lab" (CIELAB with the illuminant's white), "linear_srgb" and
+    "paper_rgb" (S + (3,)), "srgb8" (uint8, S + (3,)), and "sigma", the one-sigma CIEDE2000
+    from the model's covariance (S; None unless sigma=True and the model has uncertainty).
+    Many compositions at one angle are interpolated from an XYZ table whose error is below
+    1e-7 (checked while it is built); exact=True evaluates every composition."""
+    if isinstance(source, (str, os.PathLike)):
+        source = read_nk(source)
+    is_model = isinstance(source, Model)
+    if not is_model and not isinstance(source, Spectrum):
+        raise Error("color: source must be a Model, a Spectrum or an n,k file, not %s"
+                    % type(source).__name__)
+    if is_model:
+        if x is None:
+            raise Error("color: give the composition(s) x for a model")
+        xs = _broadcast_x(source, x)
+    else:
+        if x is not None:
+            raise Error("color: a measured spectrum has one composition; x must be None")
+        xs = np.zeros(())
+    ill = np.asarray(illuminant, dtype=object)
+    obs = np.asarray(observer)
+    if obs.dtype.kind not in "iuf" or np.any(obs != np.round(obs)):
+        raise Error("observer: %r is not 2 or 10" % (observer,))
+    xs, ang, ill_b, obs_b = np.broadcast_arrays(xs, np.asarray(angle_deg, dtype=float), ill, obs)
+    shape = xs.shape
+    n = xs.size
+    flat_x, flat_a = xs.ravel(), ang.ravel()
+    flat_i, flat_o = ill_b.ravel(), obs_b.ravel().astype(int)
+    out = {key: np.zeros((n, 3), dtype=np.uint8 if key == "srgb8" else float)
+           for key in _COLOR_KEYS}
+    sig = np.zeros(n)
+    any_sigma = False
+    if ill.ndim == 0 and obs.ndim == 0:  # one colorimeter: no grouping needed
+        groups = {(str(ill), int(obs)): slice(None)}
+    else:
+        pairs, inverse = np.unique(np.char.add(np.char.add(flat_i.astype(str), "/"),
+                                               flat_o.astype(str)), return_inverse=True)
+        groups = {}
+        for j, key in enumerate(pairs):
+            name, deg = key.rsplit("/", 1)
+            groups[(name, int(deg))] = np.nonzero(inverse == j)[0]
+    for (ill_name, obs_deg), idx in groups.items():
+        if is_model:
+            r = source._core._color(np.ascontiguousarray(flat_x[idx]),
+                                    np.ascontiguousarray(flat_a[idx]), ill_name, obs_deg,
+                                    bool(sigma), bool(exact))
+        else:
+            r = source._core._color(np.ascontiguousarray(flat_a[idx]), ill_name, obs_deg)
+        for key in _COLOR_KEYS:
+            out[key][idx] = r[key]
+        if r["sigma"] is not None:
+            sig[idx] = r["sigma"]
+            any_sigma = True
+    result = {key: out[key].reshape(shape + (3,)) for key in _COLOR_KEYS}
+    result["sigma"] = sig.reshape(shape) if any_sigma else None
+    return result
+
+
+def validate(dataset: Union[Dataset, str], methods: Sequence[str] = ("paper", "eps-linear",
+             "smooth"), holdout: Optional[Iterable] = None, angles_deg=(0.0, 45.0),
+             illuminant: str = "D65", observer: int = 2, html=None, json=None,
+             progress: Optional[Callable[[str], None]] = None) -> dict:
+    """Held-out validation, as ``alloycolor validate``: each method is refitted without the
+    held-out samples (``holdout``: their compositions; default: leave each interior sample
+    out in turn) and scored against them (CIEDE2000 per angle, reflectance and n, k errors).
+    Returns the report's JSON document as Python objects; writes the JSON and the
+    self-contained HTML page to the paths given as ``json`` and ``html`` (atomically)."""
+    if not isinstance(dataset, Dataset):
+        dataset = Dataset(dataset)
+    xs = list(dataset.x_atomic)
+    if len(xs) < 3:
+        raise Error("%s has %d samples; validation needs at least one interior sample "
+                    "besides the two ends" % (dataset.manifest_path, len(xs)))
+    if holdout is None:
+        splits, mode = [[v] for v in xs[1:-1]], "loo"
+    else:
+        chosen = []
+        for v in holdout:
+            m = dataset._match(v)
+            if m not in chosen:
+                chosen.append(m)
+        if not chosen:
+            raise Error("holdout: no composition given")
+        splits, mode = [chosen], "holdout"
+    if isinstance(methods, str):
+        methods = [m.strip() for m in methods.split(",")]
+    return _core._validate(dataset._core, list(methods), splits, mode,
+                           [float(a) for a in np.atleast_1d(angles_deg)], illuminant,
+                           int(observer), "" if html is None else os.fspath(html),
+                           "" if json is None else os.fspath(json), progress)

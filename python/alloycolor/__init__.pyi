@@ -1,0 +1,94 @@
+# Type stubs of the alloycolor package (python/alloycolor/__init__.py documents each call).
+import os
+from typing import Any, Callable, Iterable, Optional, Sequence, TypedDict, Union
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+_Path = Union[str, os.PathLike]
+_Progress = Optional[Callable[[str], None]]
+_X = Union[float, str, npt.ArrayLike]
+
+class Error(ValueError): ...
+
+class MethodInfo(TypedDict):
+    name: str
+    summary: str
+
+class ColorResult(TypedDict):
+    xyz: np.ndarray          # shape S + (3,), float64; a perfect reflector has Y = 1
+    lab: np.ndarray          # CIELAB, the illuminant's white
+    linear_srgb: np.ndarray  # IEC 61966-2-1 matrix, no chromatic adaptation
+    srgb8: np.ndarray        # uint8, clamped and gamma-encoded
+    paper_rgb: np.ndarray    # the paper's eq. 6 matrix
+    sigma: Optional[np.ndarray]  # one-sigma CIEDE2000, shape S
+
+def data_root() -> str: ...
+def methods() -> list[MethodInfo]: ...
+def illuminants() -> list[str]: ...
+
+class Spectrum:
+    source: str
+    lambda_nm: np.ndarray
+    n: np.ndarray
+    k: np.ndarray
+    warnings: list[str]
+    @property
+    def nk(self) -> np.ndarray: ...
+    def color(self, angle_deg: npt.ArrayLike = ..., illuminant: Union[str, Sequence[str]] = ...,
+              observer: npt.ArrayLike = ...) -> ColorResult: ...
+
+def read_nk(path: _Path, columns: Union[None, str, Sequence[Union[str, int]]] = ...) -> Spectrum: ...
+
+class Dataset:
+    def __init__(self, path_or_name: _Path) -> None: ...
+    name: str
+    system: str
+    composition: str
+    manifest_path: str
+    warnings: list[str]
+    x_atomic: np.ndarray
+    samples: list[dict[str, Any]]
+    def without(self, x: Iterable[Union[float, str]]) -> Dataset: ...
+    def select(self, x: Iterable[Union[float, str]]) -> Dataset: ...
+    def fit(self, method: str = ..., **options: Any) -> Model: ...
+    def __len__(self) -> int: ...
+
+class Model:
+    method: str
+    system: str
+    composition: str
+    x_min: float
+    x_max: float
+    lambda_min_nm: float
+    lambda_max_nm: float
+    warnings: list[str]
+    has_uncertainty: bool
+    training_x: np.ndarray
+    def parse_composition(self, text: str) -> float: ...
+    def nk(self, x: _X, lambda_nm: npt.ArrayLike) -> np.ndarray: ...
+    def permittivity(self, x: _X, lambda_nm: npt.ArrayLike) -> np.ndarray: ...
+    def color(self, x: _X, angle_deg: npt.ArrayLike = ..., illuminant: Union[str, Sequence[str]] = ...,
+              observer: npt.ArrayLike = ..., sigma: bool = ..., exact: bool = ...) -> ColorResult: ...
+    def save(self, path: _Path) -> None: ...
+    def to_json(self) -> dict[str, Any]: ...
+    def render(self, x: Union[float, str], shape: str = ..., size: int = ..., lighting: str = ...,
+               roughness: float = ..., background: str = ..., illuminant: str = ...,
+               observer: int = ..., linear: bool = ...) -> np.ndarray: ...
+    def spectra(self, x: Union[float, str], material: Optional[str] = ...) -> dict[str, Any]: ...
+    def write_spd(self, x: Union[float, str], eta_path: _Path, k_path: _Path,
+                  material: Optional[str] = ...) -> None: ...
+
+def fit(dataset: Union[Dataset, _Path], method: str = ..., *, degree: Optional[int] = ...,
+        max_degree: int = ..., smoothing: Optional[float] = ..., terms: str = ...,
+        lambda_range_nm: Optional[Sequence[float]] = ..., covariance: bool = ...,
+        progress: _Progress = ...) -> Model: ...
+def load_model(path: _Path) -> Model: ...
+def color(source: Union[Model, Spectrum, _Path], x: Optional[_X] = ..., angle_deg: npt.ArrayLike = ...,
+          illuminant: Union[str, Sequence[str]] = ..., observer: npt.ArrayLike = ...,
+          sigma: bool = ..., exact: bool = ...) -> ColorResult: ...
+def validate(dataset: Union[Dataset, _Path], methods: Union[str, Sequence[str]] = ...,
+             holdout: Optional[Iterable[Union[float, str]]] = ..., angles_deg: npt.ArrayLike = ...,
+             illuminant: str = ..., observer: int = ..., html: Optional[_Path] = ...,
+             json: Optional[_Path] = ..., progress: _Progress = ...) -> dict[str, Any]: ...

@@ -1,24 +1,18 @@
 #include "alloycolor/color/sweep.h"
 
+#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <complex>
 #include <sstream>
 
-#include "alloycolor/core/error.h"
-#include "alloycolor/model/optics.h"
-#include "alloycolor/core/units.h"
 #include "alloycolor/color/material_color.h"
+#include "alloycolor/core/error.h"
+#include "alloycolor/core/units.h"
+#include "alloycolor/model/optics.h"
 
 namespace alloycolor::color {
 namespace {
-
-
-// R = (Rs + Rp) / 2 of eq. 2-4 for eps; at normal incidence the closed form of optics.h.
-double ReflectanceFromEps(const Complex<double>& eps, bool normal, double cos_psi) {
-  const Complex<double> nk = IndexFromPermittivity(eps);
-  return normal ? NormalReflectance(nk) : FresnelReflectance(nk, cos_psi).Average();
-}
 
 bool Finite(const XYZ& xyz) {
   return std::isfinite(xyz.X) && std::isfinite(xyz.Y) && std::isfinite(xyz.Z);
@@ -53,17 +47,48 @@ ColorSweep::ColorSweep(const Colorimeter& colorimeter, const AlloyModel& model, 
 
 XYZ ColorSweep::ExactXYZ(double x_atomic) const {
   bound_->Permittivity(x_atomic, eps_.data());
-  const std::vector<double>& wx = colorimeter_.wx();
-  const std::vector<double>& wy = colorimeter_.wy();
-  const std::vector<double>& wz = colorimeter_.wz();
-  XYZ xyz{0.0, 0.0, 0.0};
-  for (size_t i = 0; i < grid_nm_.size(); ++i) {
-    const double r = ReflectanceFromEps(eps_[i], normal_, cos_psi_);
-    xyz.X += wx[i] * r;
-    xyz.Y += wy[i] * r;
-    xyz.Z += wz[i] * r;
+  using Eigen::ArrayXd;
+  const Eigen::Index m = static_cast<Eigen::Index>(grid_nm_.size());
+  // eps1, eps2 out of the interleaved Complex<double> array.
+  e1_ = Eigen::Map<const ArrayXd, 0, Eigen::InnerStride<2>>(&eps_[0].re, m);
+  e2_ = Eigen::Map<const ArrayXd, 0, Eigen::InnerStride<2>>(&eps_[0].im, m);
+  // IndexFromPermittivity (eq. 13, 14), lane by lane: t is the larger of n, k.
+  const ArrayXd mod = (e1_.square() + e2_.square()).sqrt();
+  const ArrayXd t = ((mod + e1_.abs()) * 0.5).sqrt();
+  const ArrayXd o = e2_ / (2.0 * t);
+  const auto zero = mod == 0.0;
+  const auto positive = e1_ >= 0.0;
+  const ArrayXd n = zero.select(0.0, positive.select(t, o));
+  const ArrayXd k = zero.select(0.0, positive.select(o, t));
+  if (normal_) {  // NormalReflectance
+    const ArrayXd k2 = k * k;
+    r_ = ((n - 1.0).square() + k2) / ((n + 1.0).square() + k2);
+  } else {  // FresnelReflectance (eq. 2-4), the same operations on arrays
+    const double c = cos_psi_;
+    const double sin2 = 1.0 - c * c;
+    const ArrayXd n2re = n * n - k * k;
+    const ArrayXd n2im = n * k + k * n;
+    const ArrayXd zr = n2re - sin2;
+    const ArrayXd r = (zr * zr + n2im * n2im).sqrt();
+    const auto rpos = zr >= 0.0;
+    const ArrayXd st = (rpos.select(r + zr, r - zr) * 0.5).sqrt();
+    const ArrayXd so = n2im.abs() / (2.0 * st);
+    const auto rzero = r == 0.0;
+    const ArrayXd sre = rzero.select(0.0, rpos.select(st, so));
+    const ArrayXd sim =
+        rzero.select(0.0, rpos.select(n2im / (2.0 * st), (n2im < 0.0).select(-st, st)));
+    const ArrayXd rs_den = (c + sre).square() + sim.square();
+    const ArrayXd rs = (rs_den == 0.0).select(0.0, ((c - sre).square() + sim.square()) / rs_den);
+    const ArrayXd pre = c * n2re, pim = c * n2im;
+    const ArrayXd rp_den = (pre + sre).square() + (pim + sim).square();
+    const ArrayXd rp =
+        (rp_den == 0.0).select(rs, ((pre - sre).square() + (pim - sim).square()) / rp_den);
+    r_ = (rs + rp) * 0.5;
   }
-  return xyz;
+  using Weights = Eigen::Map<const ArrayXd>;
+  return {(Weights(colorimeter_.wx().data(), m) * r_).sum(),
+          (Weights(colorimeter_.wy().data(), m) * r_).sum(),
+          (Weights(colorimeter_.wz().data(), m) * r_).sum()};
 }
 
 bool ColorSweep::BuildSegment(double x_lo, double x_hi, int intervals, double tolerance,

@@ -43,52 +43,48 @@ ColorSweep::ColorSweep(const Colorimeter& colorimeter, const AlloyModel& model, 
                             "the " + model.method() + " model");
   bound_ = model.Bind(grid_nm_);
   eps_.resize(grid_nm_.size());
+  for (Eigen::ArrayXd& a : s_) a.resize(static_cast<Eigen::Index>(grid_nm_.size()));
 }
 
 XYZ ColorSweep::ExactXYZ(double x_atomic) const {
   bound_->Permittivity(x_atomic, eps_.data());
   using Eigen::ArrayXd;
   const Eigen::Index m = static_cast<Eigen::Index>(grid_nm_.size());
+  // Scratch arrays sized once in the constructor: assignments here never allocate.
+  ArrayXd &e1 = s_[0], &e2 = s_[1], &t = s_[2], &n = s_[3], &k = s_[4], &r = s_[5];
   // eps1, eps2 out of the interleaved Complex<double> array.
-  e1_ = Eigen::Map<const ArrayXd, 0, Eigen::InnerStride<2>>(&eps_[0].re, m);
-  e2_ = Eigen::Map<const ArrayXd, 0, Eigen::InnerStride<2>>(&eps_[0].im, m);
+  e1 = Eigen::Map<const ArrayXd, 0, Eigen::InnerStride<2>>(&eps_[0].re, m);
+  e2 = Eigen::Map<const ArrayXd, 0, Eigen::InnerStride<2>>(&eps_[0].im, m);
   // IndexFromPermittivity (eq. 13, 14), lane by lane: t is the larger of n, k.
-  const ArrayXd mod = (e1_.square() + e2_.square()).sqrt();
-  const ArrayXd t = ((mod + e1_.abs()) * 0.5).sqrt();
-  const ArrayXd o = e2_ / (2.0 * t);
-  const auto zero = mod == 0.0;
-  const auto positive = e1_ >= 0.0;
-  const ArrayXd n = zero.select(0.0, positive.select(t, o));
-  const ArrayXd k = zero.select(0.0, positive.select(o, t));
+  r = (e1.square() + e2.square()).sqrt();  // |eps|
+  t = ((r + e1.abs()) * 0.5).sqrt();
+  n = (r == 0.0).select(0.0, (e1 >= 0.0).select(t, e2 / (2.0 * t)));
+  k = (r == 0.0).select(0.0, (e1 >= 0.0).select(e2 / (2.0 * t), t));
   if (normal_) {  // NormalReflectance
-    const ArrayXd k2 = k * k;
-    r_ = ((n - 1.0).square() + k2) / ((n + 1.0).square() + k2);
+    r = ((n - 1.0).square() + k.square()) / ((n + 1.0).square() + k.square());
   } else {  // FresnelReflectance (eq. 2-4), the same operations on arrays
+    ArrayXd &n2re = s_[0], &n2im = s_[1], &zr = s_[2], &sre = s_[6], &sim = s_[7];
+    ArrayXd &rs = s_[8], &rp = s_[9];
     const double c = cos_psi_;
     const double sin2 = 1.0 - c * c;
-    const ArrayXd n2re = n * n - k * k;
-    const ArrayXd n2im = n * k + k * n;
-    const ArrayXd zr = n2re - sin2;
-    const ArrayXd r = (zr * zr + n2im * n2im).sqrt();
-    const auto rpos = zr >= 0.0;
-    const ArrayXd st = (rpos.select(r + zr, r - zr) * 0.5).sqrt();
-    const ArrayXd so = n2im.abs() / (2.0 * st);
-    const auto rzero = r == 0.0;
-    const ArrayXd sre = rzero.select(0.0, rpos.select(st, so));
-    const ArrayXd sim =
-        rzero.select(0.0, rpos.select(n2im / (2.0 * st), (n2im < 0.0).select(-st, st)));
-    const ArrayXd rs_den = (c + sre).square() + sim.square();
-    const ArrayXd rs = (rs_den == 0.0).select(0.0, ((c - sre).square() + sim.square()) / rs_den);
-    const ArrayXd pre = c * n2re, pim = c * n2im;
-    const ArrayXd rp_den = (pre + sre).square() + (pim + sim).square();
-    const ArrayXd rp =
-        (rp_den == 0.0).select(rs, ((pre - sre).square() + (pim - sim).square()) / rp_den);
-    r_ = (rs + rp) * 0.5;
+    n2re = n * n - k * k;
+    n2im = n * k + k * n;
+    zr = n2re - sin2;
+    r = (zr * zr + n2im * n2im).sqrt();  // |N^2 - sin^2|
+    // Sqrt(zr + i n2im): st = the larger part, in n (free from here on).
+    n = ((zr >= 0.0).select(r + zr, r - zr) * 0.5).sqrt();
+    sre = (r == 0.0).select(0.0, (zr >= 0.0).select(n, n2im.abs() / (2.0 * n)));
+    sim = (r == 0.0).select(0.0, (zr >= 0.0).select(n2im / (2.0 * n), (n2im < 0.0).select(-n, n)));
+    k = (c + sre).square() + sim.square();
+    rs = (k == 0.0).select(0.0, ((c - sre).square() + sim.square()) / k);
+    k = (c * n2re + sre).square() + (c * n2im + sim).square();
+    rp = (k == 0.0).select(rs, ((c * n2re - sre).square() + (c * n2im - sim).square()) / k);
+    r = (rs + rp) * 0.5;
   }
   using Weights = Eigen::Map<const ArrayXd>;
-  return {(Weights(colorimeter_.wx().data(), m) * r_).sum(),
-          (Weights(colorimeter_.wy().data(), m) * r_).sum(),
-          (Weights(colorimeter_.wz().data(), m) * r_).sum()};
+  return {(Weights(colorimeter_.wx().data(), m) * r).sum(),
+          (Weights(colorimeter_.wy().data(), m) * r).sum(),
+          (Weights(colorimeter_.wz().data(), m) * r).sum()};
 }
 
 bool ColorSweep::BuildSegment(double x_lo, double x_hi, int intervals, double tolerance,

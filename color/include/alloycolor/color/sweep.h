@@ -72,7 +72,7 @@ class ColorSweep {
   bool normal_ = true;
   std::vector<double> grid_nm_;               // colorimeter grid held inside the model's range
   mutable std::vector<Complex<double>> eps_;  // scratch: eps on grid_nm_
-  mutable Eigen::ArrayXd e1_, e2_, r_;        // scratch: eps1, eps2, R on grid_nm_
+  mutable std::array<Eigen::ArrayXd, 10> s_;  // scratch arrays on grid_nm_ (ExactXYZ)
   std::vector<Segment> segments_;
   double table_error_ = 0.0;
   int table_nodes_ = 0;

@@ -60,7 +60,10 @@ XYZ ColorSweep::ExactXYZ(double x_atomic) const {
   t = ((r + e1.abs()) * 0.5).sqrt();
   n = (r == 0.0).select(0.0, (e1 >= 0.0).select(t, e2 / (2.0 * t)));
   k = (r == 0.0).select(0.0, (e1 >= 0.0).select(e2 / (2.0 * t), t));
-  if (normal_) {  // NormalReflectance
+  if (normal_) {
+    // NormalReflectance of the principal root of eps (as FresnelReflectance at cos = 1,
+    // which sees only N^2 = eps): n >= 0 even where a model gives eps2 < 0.
+    n = (r == 0.0).select(0.0, (e1 >= 0.0).select(t, e2.abs() / (2.0 * t)));
     r = ((n - 1.0).square() + k.square()) / ((n + 1.0).square() + k.square());
   } else {  // FresnelReflectance (eq. 2-4), the same operations on arrays
     ArrayXd &n2re = s_[0], &n2im = s_[1], &zr = s_[2], &sre = s_[6], &sim = s_[7];

@@ -4,12 +4,13 @@
 #include <cmath>
 #include <sstream>
 
+#include "alloycolor/core/composition.h"
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/grid.h"
 #include "alloycolor/core/io.h"
-#include "alloycolor/model/optics.h"
 #include "alloycolor/core/units.h"
 #include "alloycolor/model/interpolation.h"
+#include "alloycolor/model/optics.h"
 
 namespace alloycolor {
 namespace {
@@ -19,8 +20,7 @@ std::complex<double> EpsOf(const NkSpectrum& nk, double lambda_nm) {
   return i * i;
 }
 
-std::complex<double> Lerp(const std::complex<double>& a, const std::complex<double>& b,
-                          double t) {
+std::complex<double> Lerp(const std::complex<double>& a, const std::complex<double>& b, double t) {
   return a + (b - a) * t;
 }
 
@@ -38,7 +38,126 @@ Bracket FindBracket(const std::vector<double>& xs, double x) {
   return {lo, hi, (x - xs[lo]) / (xs[hi] - xs[lo])};
 }
 
+// A sample model bound to a grid (SampleModel::Bind). Per wavelength i it keeps every
+// sample's eps and, for the paper method, the compositions, tau and m* of the samples that
+// can be inverted there, so Permittivity repeats PaperAt / EpsLinearAt with the same
+// arithmetic and none of the per-wavelength interpolation, inversion or allocation.
+class BoundSampleModel : public BoundModel {
+ public:
+  struct Invertible {  // the samples invertible at one wavelength, sorted by x
+    std::vector<double> xs, taus, masses;
+  };
+  BoundSampleModel(std::vector<double> lambda_nm, bool paper, std::vector<double> node_x,
+                   std::vector<Complex<double>> node_eps, std::vector<Invertible> invertible,
+                   AlloySystem system, double x_min, double x_max)
+      : BoundModel(std::move(lambda_nm)),
+        paper_(paper),
+        node_x_(std::move(node_x)),
+        node_eps_(std::move(node_eps)),
+        invertible_(std::move(invertible)),
+        system_(std::move(system)),
+        x_min_(x_min),
+        x_max_(x_max) {
+    for (double l : this->lambda_nm()) omega_ev_.push_back(OmegaEvFromLambdaNm(l));
+    for (const Invertible& inv : invertible_) all_.push_back(inv.xs.size() == node_x_.size());
+  }
+
+  void Permittivity(double x, Complex<double>* eps) const override {
+    const size_t m = lambda_nm().size();
+    const Bracket all = FindBracket(node_x_, x);
+    if (!paper_) {
+      for (size_t i = 0; i < m; ++i) eps[i] = EpsLinear(all, i);
+      return;
+    }
+    const double n_e = FreeElectronDensityM3(x, system_);
+    const bool inside = x >= x_min_ && x <= x_max_;
+    for (size_t i = 0; i < m; ++i) {
+      const Invertible& inv = invertible_[i];
+      double tau, mass;
+      if (inv.xs.empty()) {
+        eps[i] = EpsLinear(all, i);
+        continue;
+      }
+      if (inv.xs.size() == 1) {
+        tau = inv.taus[0];
+        mass = inv.masses[0];
+      } else {
+        const Bracket b = all_[i] ? all : FindBracket(inv.xs, x);
+        if (inside && (b.t < 0 || b.t > 1)) {
+          const size_t nearest = b.t < 0 ? b.lo : b.hi;
+          tau = inv.taus[nearest];
+          mass = inv.masses[nearest];
+        } else {
+          tau = inv.taus[b.lo] + (inv.taus[b.hi] - inv.taus[b.lo]) * b.t;
+          mass = inv.masses[b.lo] + (inv.masses[b.hi] - inv.masses[b.lo]) * b.t;
+          if (!(tau > 0) || !(mass > 0)) {
+            const size_t nearest = b.t < 0.5 ? b.lo : b.hi;
+            tau = inv.taus[nearest];
+            mass = inv.masses[nearest];
+          }
+        }
+      }
+      eps[i] =
+          DrudePermittivity(omega_ev_[i], EffectiveMassRatio(n_e, mass), GammaEvFromTauFs(tau));
+    }
+  }
+
+ private:
+  Complex<double> EpsLinear(const Bracket& b, size_t i) const {
+    const size_t m = lambda_nm().size();
+    const Complex<double>& lo = node_eps_[b.lo * m + i];
+    const Complex<double>& hi = node_eps_[b.hi * m + i];
+    if (b.t == 0.0) return lo;
+    if (b.t == 1.0) return hi;
+    return {lo.re + (hi.re - lo.re) * b.t, lo.im + (hi.im - lo.im) * b.t};
+  }
+
+  bool paper_;
+  std::vector<double> node_x_;
+  std::vector<Complex<double>> node_eps_;  // node-major: node_eps_[node * m + i]
+  std::vector<Invertible> invertible_;     // per wavelength (paper only)
+  std::vector<bool> all_;                  // every sample invertible at wavelength i
+  std::vector<double> omega_ev_;
+  AlloySystem system_;
+  double x_min_, x_max_;
+};
+
 }  // namespace
+
+std::unique_ptr<BoundModel> SampleModel::Bind(const std::vector<double>& lambda_nm) const {
+  // The cubic schemes are evaluated through Permittivity.
+  if (kind_ == Kind::kEpsPchip || kind_ == Kind::kEpsSpline) return AlloyModel::Bind(lambda_nm);
+  CheckLambda(lambda_nm);
+  const size_t m = lambda_nm.size();
+  std::vector<double> node_x;
+  std::vector<Complex<double>> node_eps;
+  for (const Node& node : nodes_) {
+    node_x.push_back(node.x);
+    for (double l : lambda_nm) {
+      const std::complex<double> e = EpsOf(node.nk, l);
+      node_eps.push_back({e.real(), e.imag()});
+    }
+  }
+  std::vector<BoundSampleModel::Invertible> invertible;
+  if (kind_ == Kind::kPaper) {
+    invertible.resize(m);
+    for (size_t i = 0; i < m; ++i) {
+      const double omega = OmegaEvFromLambdaNm(lambda_nm[i]);
+      for (size_t j = 0; j < nodes_.size(); ++j) {
+        const Complex<double>& e = node_eps[j * m + i];
+        if (!DrudeInvertible(e.re, e.im)) continue;
+        const DrudePoint p = InvertDrude(omega, e.re, e.im);
+        invertible[i].xs.push_back(nodes_[j].x);
+        invertible[i].taus.push_back(TauFsFromGammaEv(p.gamma_ev));
+        invertible[i].masses.push_back(
+            EffectiveMassRatio(FreeElectronDensityM3(nodes_[j].x, system()), p.wp2_ev2));
+      }
+    }
+  }
+  return std::make_unique<BoundSampleModel>(lambda_nm, kind_ == Kind::kPaper, std::move(node_x),
+                                            std::move(node_eps), std::move(invertible), system(),
+                                            x_min(), x_max());
+}
 
 SampleModel::SampleModel(Kind kind, const Dataset& dataset) : kind_(kind) {
   for (const Sample& s : dataset.samples) nodes_.push_back({s.x_atomic, s.nk});
@@ -115,8 +234,8 @@ void SampleModel::Diagnose() {
     auto flush = [&]() {
       if (start < 0) return;
       std::ostringstream msg;
-      msg << node.nk.source << " (x = " << node.x << "): " << reason << " at " << start
-          << "-" << last << " nm; the Drude inversion is undefined there and the paper "
+      msg << node.nk.source << " (x = " << node.x << "): " << reason << " at " << start << "-"
+          << last << " nm; the Drude inversion is undefined there and the paper "
           << "model skips this sample at those wavelengths";
       AddWarning(msg.str());
       start = -1;

@@ -19,13 +19,14 @@
 #ifndef ALLOYCOLOR_COLOR_SWEEP_H_
 #define ALLOYCOLOR_COLOR_SWEEP_H_
 
+#include <Eigen/Core>
 #include <array>
 #include <cstdint>
 #include <memory>
 #include <vector>
 
-#include "alloycolor/model/alloy_model.h"
 #include "alloycolor/color/colorimetry.h"
+#include "alloycolor/model/alloy_model.h"
 
 namespace alloycolor::color {
 
@@ -69,8 +70,9 @@ class ColorSweep {
   std::unique_ptr<BoundModel> bound_;
   double cos_psi_ = 1.0;
   bool normal_ = true;
-  std::vector<double> grid_nm_;  // colorimeter grid held inside the model's range
+  std::vector<double> grid_nm_;               // colorimeter grid held inside the model's range
   mutable std::vector<Complex<double>> eps_;  // scratch: eps on grid_nm_
+  mutable std::array<Eigen::ArrayXd, 10> s_;  // scratch arrays on grid_nm_ (ExactXYZ)
   std::vector<Segment> segments_;
   double table_error_ = 0.0;
   int table_nodes_ = 0;

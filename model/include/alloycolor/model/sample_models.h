@@ -44,6 +44,11 @@ class SampleModel : public AlloyModel {
   // the inversion of eps.
   bool DrudeAt(double x_atomic, double lambda_nm, DrudePoint* out) const override;
 
+  // Bound to a grid: every sample's eps there (and, for "paper", its inversion to tau and
+  // m* wherever that is defined) computed once, so a composition costs the interpolation
+  // in x and eq. 7 per wavelength. Equal to Permittivity to rounding.
+  std::unique_ptr<BoundModel> Bind(const std::vector<double>& lambda_nm) const override;
+
   // Drude parameters of the paper method at (x, lambda): false where undefined.
   struct TauMass {
     double tau_fs;

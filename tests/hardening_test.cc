@@ -216,6 +216,7 @@ TEST(Bounds, OptionValuesAreChecked) {
 
 TEST(Bounds, ColourTablesMustBeSmallRegularFiles) {
   const std::string data = MakeTempDir() + "/data";
+  fs::create_directories(data + "/cie");
   fs::copy(DataDir() + "/cie", data + "/cie", fs::copy_options::recursive);
   const std::string table = data + "/cie/illuminant-D65.csv";
   fs::remove(table);

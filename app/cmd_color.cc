@@ -1,12 +1,14 @@
 // alloycolor color: the colour of a polished metal from measured n, k (--nk) or of an
 // alloy at any composition from a data set or a fitted model.
 #include <cstdio>
+#include <cmath>
 #include <iostream>
 #include <sstream>
 
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/io.h"
 #include "alloycolor/color/material_color.h"
+#include "alloycolor/core/text.h"
 #include "common.h"
 
 namespace alloycolor::app {
@@ -21,22 +23,43 @@ struct ColorOptions {
   bool quiet = false;
 };
 
-void PrintHeader(const std::string& what, const ColorOptions& o) {
-  std::printf("%s; illuminant %s, %d-degree observer, incidence %g degrees\n", what.c_str(),
-              o.illuminant.c_str(), o.observer, o.angle_deg);
-  std::printf("%-10s %8s %8s %8s %8s %8s %8s  %-8s %-15s %s\n", "x", "X", "Y", "Z", "L*",
-              "a*", "b*", "sRGB", "sRGB8", "paper RGB");
+// printf into a string: every line is rendered before any is printed, so a failure
+// prints nothing half-way.
+template <typename... Args>
+void Append(std::string* text, const char* format, Args... args) {
+  char line[512];
+  std::snprintf(line, sizeof line, format, args...);
+  *text += line;
 }
 
-void PrintRow(const std::string& label, const color::ColorResult& c, double sigma) {
+void PrintHeader(std::string* text, const std::string& what, const ColorOptions& o) {
+  Append(text, "%s; illuminant %s, %d-degree observer, incidence %g degrees\n",
+         MessageLine(what, 200).c_str(), o.illuminant.c_str(), o.observer, o.angle_deg);
+  Append(text, "%-10s %8s %8s %8s %8s %8s %8s  %-8s %-15s %s\n", "x", "X", "Y", "Z", "L*", "a*",
+         "b*", "sRGB", "sRGB8", "paper RGB");
+}
+
+// Throws Error naming the composition when any printed figure is not finite.
+void RequireFinite(const color::ColorResult& c, double sigma, const std::string& where) {
+  const double values[] = {c.xyz.X,       c.xyz.Y,       c.xyz.Z,       c.lab.L, c.lab.a,
+                           c.lab.b,       c.paper_rgb.r, c.paper_rgb.g, c.paper_rgb.b, sigma};
+  for (const double v : values) {
+    if (!std::isfinite(v)) {
+      throw Error(where + ": the colour is not finite (the model or the colour tables give "
+                          "NaN or infinity here)");
+    }
+  }
+}
+
+void PrintRow(std::string* text, const std::string& label, const color::ColorResult& c,
+              double sigma) {
   char rgb8[32];
   std::snprintf(rgb8, sizeof rgb8, "%d,%d,%d", c.srgb8[0], c.srgb8[1], c.srgb8[2]);
-  std::printf("%-10s %8.4f %8.4f %8.4f %8.3f %8.3f %8.3f  %-8s %-15s %.3f,%.3f,%.3f",
-              label.c_str(), c.xyz.X, c.xyz.Y, c.xyz.Z, c.lab.L, c.lab.a, c.lab.b,
-              color::HexColor(c.srgb8).c_str(), rgb8, c.paper_rgb.r, c.paper_rgb.g,
-              c.paper_rgb.b);
-  if (sigma >= 0) std::printf("  (1-sigma dE00 %.3f)", sigma);
-  std::printf("\n");
+  Append(text, "%-10s %8.4f %8.4f %8.4f %8.3f %8.3f %8.3f  %-8s %-15s %.3f,%.3f,%.3f",
+         label.c_str(), c.xyz.X, c.xyz.Y, c.xyz.Z, c.lab.L, c.lab.a, c.lab.b,
+         color::HexColor(c.srgb8).c_str(), rgb8, c.paper_rgb.r, c.paper_rgb.g, c.paper_rgb.b);
+  if (sigma >= 0) Append(text, "  (1-sigma dE00 %.3f)", sigma);
+  *text += "\n";
 }
 
 void Run(const ColorOptions& o) {
@@ -60,25 +83,29 @@ void Run(const ColorOptions& o) {
       nlohmann::json out = common;
       out["source"] = o.material.nk_file;
       out.update(color::ColorJson(c));
+      RequireFinite(c, 0, o.material.nk_file);
       std::cout << out.dump(2) << "\n";
     } else {
-      PrintHeader(o.material.nk_file, o);
-      PrintRow("-", c, -1);
+      RequireFinite(c, 0, o.material.nk_file);
+      std::string text;
+      PrintHeader(&text, o.material.nk_file, o);
+      PrintRow(&text, "-", c, -1);
+      std::cout << text;
     }
     return;
   }
   const auto model = o.material.LoadModel(o.quiet);
   const std::vector<double> xs = o.material.Compositions(*model, false);
   nlohmann::json results = nlohmann::json::array();
-  if (!o.json) {
-    PrintHeader(model->system().Name() + ", " + model->method() + " model", o);
-  }
+  std::string text;
+  if (!o.json) PrintHeader(&text, model->system().Name() + ", " + model->method() + " model", o);
   for (double x : xs) {
     const color::ColorResult c = color::ColorFromXYZ(
         colorimeter, color::MaterialXYZ(colorimeter,
                                          color::IndexOnGrid(colorimeter, *model, x),
                                          o.angle_deg));
     const double sigma = color::DeltaE00Sigma(colorimeter, *model, x, o.angle_deg);
+    RequireFinite(c, sigma, "composition x = " + FormatNumber(x));
     if (o.json) {
       nlohmann::json r = {{"x", x},
                           {"x_weight", WeightFromAtomicFraction(x, model->system())}};
@@ -88,9 +115,10 @@ void Run(const ColorOptions& o) {
     } else {
       char label[32];
       std::snprintf(label, sizeof label, "%.4g", x);
-      PrintRow(label, c, sigma);
+      PrintRow(&text, label, c, sigma);
     }
   }
+  std::cout << text;
   if (o.json) {
     nlohmann::json out = common;
     out["system"] = model->system().Name();

@@ -172,7 +172,9 @@ void Run(const ExportOptions& o) {
   if (!o.quiet) {
     for (const std::string& note : spectra.notes) Warn(note);
   }
-  for (const auto& [path, text] : files) WriteOutput(path, text, o.quiet);
+  std::vector<OutputFile> outputs;
+  for (const auto& [path, text] : files) outputs.push_back({path, text});
+  WriteOutputs(outputs, o.quiet);
   if (!o.quiet && o.format != "spd") {
     const auto& c = m.rgb_conductor;
     std::cerr << "alloycolor: colours in " << exports::kColorSpaceNote << "\n";

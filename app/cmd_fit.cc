@@ -11,10 +11,16 @@
 #include "alloycolor/core/io.h"
 #include "alloycolor/fit/methods.h"
 #include "alloycolor/model/registry.h"
+#include "alloycolor/core/grid.h"
+#include "alloycolor/core/output.h"
+#include "alloycolor/core/text.h"
 #include "common.h"
 
 namespace alloycolor::app {
 namespace {
+
+// The most wavelength nodes a fit grid may have (the bundled data use under 200).
+constexpr int kMaxFitGridNodes = 20000;
 
 struct FitOptions {
   std::string data_dir;
@@ -105,6 +111,18 @@ void Run(const FitOptions& o) {
   }
   std::unique_ptr<AlloyModel> old_model;
   if (!o.from.empty()) old_model = ReadModelFile(o.from);
+  // Before the fit: the model must not replace an input (the manifest, a sample, --from).
+  CheckOutputPath(o.out);
+  if (o.lambda_step > 0) {
+    const WavelengthRange common = CommonRange(dataset);
+    const double lo = o.lambda_from > 0 ? o.lambda_from : common.lo_nm;
+    const double hi = o.lambda_to > 0 ? o.lambda_to : common.hi_nm;
+    if ((hi - lo) / o.lambda_step > kMaxFitGridNodes) {
+      throw Error("--lambda-step " + FormatNumber(o.lambda_step) + " nm over " +
+                  FormatNumber(lo) + "-" + FormatNumber(hi) + " nm makes over " +
+                  std::to_string(kMaxFitGridNodes) + " grid nodes; give a larger step");
+    }
+  }
   const auto start = std::chrono::steady_clock::now();
   fit::FitSettings settings;
   settings.degree = o.degree;
@@ -181,7 +199,8 @@ void RegisterFit(CLI::App& app) {
                   "Refit: start from this earlier model and report what changed");
   cmd->add_option("--degree", o->degree,
                   "smooth: polynomial degree in composition (default: cross-validated); "
-                  "physical: degree of every parameter's polynomial (default 2)");
+                  "physical: degree of every parameter's polynomial (default 2)")
+      ->check(NumberIn(0, 20, /*whole=*/true));
   cmd->add_option("--terms", o->terms,
                   "physical: interband terms, comma-separated: lorentz, cp (Etchegoin 2006 "
                   "critical point), rioux-gap, rioux-edge (Rioux 2014); none for the Drude "
@@ -189,17 +208,23 @@ void RegisterFit(CLI::App& app) {
                   "rioux-gap,rioux-edge / cp,cp / lorentz,lorentz,lorentz on the end samples")
       ->capture_default_str();
   cmd->add_option("--max-degree", o->max_degree, "smooth: largest degree cross-validation tries")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(NumberIn(0, 20, /*whole=*/true));
   cmd->add_option("--smoothing", o->smoothing,
-                  "smooth: weight of the curvature penalty across wavelength (default 1e-3)");
+                  "smooth: weight of the curvature penalty across wavelength, 0 to 1e6 "
+                  "(default 1e-3)")
+      ->check(NumberIn(0, 1e6));
   cmd->add_option("--lambda-from", o->lambda_from,
                   "smooth, physical: first wavelength of the fit grid, nm (physical default: "
-                  "the common range within 300-1000 nm, or all of it for infrared data)");
+                  "the common range within 300-1000 nm, or all of it for infrared data)")
+      ->check(NumberIn(1, 1e6));
   cmd->add_option("--lambda-to", o->lambda_to,
-                  "smooth, physical: last wavelength of the fit grid, nm");
+                  "smooth, physical: last wavelength of the fit grid, nm")
+      ->check(NumberIn(1, 1e6));
   cmd->add_option("--lambda-step", o->lambda_step,
                   "smooth, physical: grid step, nm (default 5; physical: range/200 in the "
-                  "infrared)");
+                  "infrared); at least 0.01 nm, at most 20,000 grid nodes")
+      ->check(NumberIn(0.01, 1e5));
   cmd->add_flag("--no-covariance", o->no_covariance, "smooth, physical: skip the covariance");
   cmd->add_flag("--quiet", o->quiet, "No progress or warnings on stderr");
   cmd->callback([o]() { Run(*o); });

@@ -8,6 +8,7 @@
 #include "alloycolor/core/io.h"
 #include "alloycolor/model/optics.h"
 #include "alloycolor/core/spectrum.h"
+#include "alloycolor/core/text.h"
 #include "common.h"
 
 namespace alloycolor::app {
@@ -40,8 +41,12 @@ void Run(const PredictOptions& o, CLI::App* cmd) {
     to = model->lambda_max_nm();
     step = (to - from) / 100.0;
   }
-  if (!(step > 0) || !(to >= from) || (to - from) / step > 1e7) {
+  if (!(step > 0) || !(to >= from)) {
     throw Error("--from/--to/--step: need from <= to and a positive step");
+  }
+  if ((to - from) / step > 1e6) {
+    throw Error("--from/--to/--step: " + FormatNumber((to - from) / step) +
+                " wavelengths; at most 1,000,000 (give a larger --step)");
   }
   const std::vector<double> grid = UniformGrid(from, to, step);
   const std::vector<std::complex<double>> index = model->Index(x, grid);
@@ -65,6 +70,16 @@ void Run(const PredictOptions& o, CLI::App* cmd) {
       }
     } else if (o.sigma) {
       throw Error("--sigma: the " + model->method() + " model carries no uncertainty");
+    }
+  }
+  // Finite or an error: never a NaN or an infinity in the output.
+  for (size_t i = 0; i < grid.size(); ++i) {
+    const bool finite = std::isfinite(index[i].real()) && std::isfinite(index[i].imag()) &&
+                        (n_sigma.empty() || (std::isfinite(n_sigma[i]) && std::isfinite(k_sigma[i])));
+    if (!finite) {
+      throw Error("x = " + FormatNumber(x) + ", " + FormatNumber(grid[i]) + " nm: the " +
+                  model->method() + " model gives no finite n, k" +
+                  (n_sigma.empty() ? "" : " or sigma") + " here");
     }
   }
   if (o.format == "json") {

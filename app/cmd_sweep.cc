@@ -36,7 +36,7 @@ struct SweepOptions {
   bool quiet = false;
 };
 
-// Text written to a FILE in blocks of about 1 MiB, numbers formatted without stdio.
+// Text written to a FILE in blocks of 64 MiB, numbers formatted without stdio.
 class Output {
  public:
   explicit Output(std::FILE* file) : file_(file) { buffer_.resize(kBlock + kSlack); }
@@ -106,7 +106,9 @@ class Output {
   }
 
  private:
-  static constexpr size_t kBlock = 1 << 20;
+  // 64 MiB (some 900,000 rows) are held before the first write, so that a sweep of that
+  // size that fails prints nothing.
+  static constexpr size_t kBlock = 64 << 20;
   static constexpr size_t kSlack = 4096;  // room for one row past the block
   std::FILE* file_;
   std::vector<char> buffer_;

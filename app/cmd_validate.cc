@@ -205,13 +205,14 @@ void Run(const ValidateOptions& o) {
   }
   const ValidationReport report =
       validate::ComputeValidation(dataset, splits, colorimeter, options, progress);
-  // Both files are rendered before either is written; each is written atomically.
+  // Both files are rendered before either is written, and written as a set.
   const nlohmann::json json = ValidationJson(report);
   const std::string json_text = json.dump(1) + "\n";
   const std::string html_text = ValidationHtml(report);
   namespace fs = std::filesystem;
-  WriteOutput((fs::path(o.out) / "report.json").string(), json_text, o.quiet);
-  WriteOutput((fs::path(o.out) / "report.html").string(), html_text, o.quiet);
+  WriteOutputs({{(fs::path(o.out) / "report.json").string(), json_text},
+                {(fs::path(o.out) / "report.html").string(), html_text}},
+               o.quiet);
   PrintSummary(json);
 }
 

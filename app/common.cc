@@ -11,11 +11,16 @@
 #include "alloycolor/fit/methods.h"
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/io.h"
+#include "alloycolor/core/output.h"
+#include "alloycolor/core/text.h"
 #include "alloycolor/model/registry.h"
 
 namespace alloycolor::app {
 
 namespace fs = std::filesystem;
+
+// The most values a comma-separated option takes (--x, --angles, ...).
+constexpr std::size_t kMaxListValues = 1000;
 
 std::string DataRoot() {
   if (const char* env = std::getenv("ALLOYCOLOR_DATA_DIR"); env && *env) return env;
@@ -58,7 +63,13 @@ std::vector<std::string> SplitComma(const std::string& text) {
 
 std::vector<double> ParseCompositions(const std::string& text, const AlloySystem& system) {
   std::vector<double> xs;
-  for (const std::string& part : SplitComma(text)) {
+  const std::vector<std::string> parts = SplitComma(text);
+  if (parts.size() > kMaxListValues) {
+    throw Error("compositions: " + std::to_string(parts.size()) + " given, at most " +
+                std::to_string(kMaxListValues) + " (use 'alloycolor sweep' for more)");
+  }
+  for (const std::string& part : parts) {
+    if (part.find('\0') != std::string::npos) throw Error("compositions: a NUL byte in the list");
     xs.push_back(ParseComposition(part, system));
   }
   if (xs.empty()) throw Error("no composition given");
@@ -67,11 +78,17 @@ std::vector<double> ParseCompositions(const std::string& text, const AlloySystem
 
 std::vector<double> ParseNumberList(const std::string& text, const std::string& option) {
   std::vector<double> values;
-  for (const std::string& part : SplitComma(text)) {
+  const std::vector<std::string> parts = SplitComma(text);
+  if (parts.size() > kMaxListValues) {
+    throw Error(option + ": " + std::to_string(parts.size()) + " values given, at most " +
+                std::to_string(kMaxListValues));
+  }
+  for (const std::string& part : parts) {
+    if (part.find('\0') != std::string::npos) throw Error(option + ": a NUL byte in a number");
     char* end = nullptr;
     const double v = std::strtod(part.c_str(), &end);
     if (part.empty() || end == part.c_str() || *end != '\0' || !std::isfinite(v)) {
-      throw Error(option + ": cannot read '" + part + "' as a number");
+      throw Error(option + ": cannot read " + Quote(MessageLine(part, 40)) + " as a number");
     }
     values.push_back(v);
   }
@@ -81,12 +98,19 @@ std::vector<double> ParseNumberList(const std::string& text, const std::string& 
 
 ProgressCallback ProgressPrinter(bool quiet) {
   if (quiet) return {};
-  return [](const std::string& m) { std::cerr << "alloycolor: " << m << "\n"; };
+  return [](const std::string& m) { std::cerr << "alloycolor: " << MessageLine(m) << "\n"; };
 }
 
 void WriteOutput(const std::string& path, const std::string& contents, bool quiet) {
-  WriteFileAtomic(path, contents);
-  if (!quiet) std::cerr << "alloycolor: wrote " << path << "\n";
+  WriteOutputs({{path, contents}}, quiet);
+}
+
+void WriteOutputs(const std::vector<OutputFile>& files, bool quiet) {
+  WriteFileSetAtomic(files);
+  if (quiet) return;
+  for (const OutputFile& file : files) {
+    std::cerr << "alloycolor: wrote " << MessageLine(file.path) << "\n";
+  }
 }
 
 namespace {
@@ -100,7 +124,7 @@ void Warn(const std::string& message) { PendingWarnings().push_back(message); }
 
 void FlushWarnings() {
   for (const std::string& w : PendingWarnings()) {
-    std::cerr << "alloycolor: warning: " << w << "\n";
+    std::cerr << "alloycolor: warning: " << MessageLine(w) << "\n";
   }
   PendingWarnings().clear();
 }
@@ -197,6 +221,21 @@ void AddColorimetryOptions(CLI::App* cmd, std::string* illuminant, int* observer
       ->capture_default_str();
   cmd->add_option("--observer", *observer, "CIE observer: 2 (1931) or 10 (1964)")
       ->capture_default_str();
+}
+
+CLI::Validator NumberIn(double lo, double hi, bool whole) {
+  const std::string range = "[" + FormatNumber(lo) + ", " + FormatNumber(hi) + "]";
+  const std::string kind = whole ? "a whole number in " : "a finite number in ";
+  return CLI::Validator(
+      [lo, hi, whole, range, kind](std::string& text) -> std::string {
+        double value = 0;
+        if (!ParseFiniteDouble(Trim(text), &value) || !(value >= lo && value <= hi) ||
+            (whole && value != std::floor(value))) {
+          return Quote(MessageLine(text, 40)) + " is not " + kind + range;
+        }
+        return std::string();
+      },
+      (whole ? "INT in " : "NUMBER in ") + range);
 }
 
 void CheckOutputFolder(const std::string& path, const std::string& option) {

@@ -11,6 +11,7 @@
 
 #include "alloycolor/model/alloy_model.h"
 #include "alloycolor/core/dataset.h"
+#include "alloycolor/core/output.h"
 #include "alloycolor/core/progress.h"
 #include "alloycolor/core/spectrum.h"
 #include "alloycolor/color/colorimetry.h"
@@ -38,8 +39,10 @@ ProgressCallback ProgressPrinter(bool quiet);
 // Every method with its summary, for --help.
 std::string MethodsHelp();
 
-// Writes a file atomically and says so on stderr unless quiet.
+// Writes a file atomically (output.h: never over an input or a special file) and says so
+// on stderr unless quiet. WriteOutputs writes several as a set: all or none replaced.
 void WriteOutput(const std::string& path, const std::string& contents, bool quiet);
+void WriteOutputs(const std::vector<OutputFile>& files, bool quiet);
 
 // Queues a warning ("alloycolor: warning: ..."); FlushWarnings prints them once the
 // command has succeeded, so a failed run prints its one error line only.
@@ -79,6 +82,10 @@ struct MaterialSource {
 
 // --illuminant and --observer, the same on every command that computes colour.
 void AddColorimetryOptions(CLI::App* cmd, std::string* illuminant, int* observer);
+
+// An option check: the value must be a finite number in [lo, hi] ("nan", "-1" refused
+// with a message naming the range). For integer options too: "2.5" and 2^40 are refused.
+CLI::Validator NumberIn(double lo, double hi, bool whole = false);
 
 // Refuses an output path whose folder does not exist, before any work is done.
 void CheckOutputFolder(const std::string& path, const std::string& option);

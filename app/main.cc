@@ -1,14 +1,58 @@
 // alloycolor: optical constants, reflectance and colour of binary metal alloys at any
-// composition. Errors print one line and exit with status 2.
+// composition. Errors print one line (control characters shown as '?', cut at 300
+// characters) and exit with status 2, out-of-memory included; 3 is kept for a bug. A
+// closed standard output (`alloycolor sweep | head`) ends the run quietly with status 0.
+// SIGINT, SIGTERM and SIGHUP remove the temporary of a file being written.
+#include <poll.h>
+#include <signal.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <cstdio>
 #include <iostream>
+#include <new>
+#include <string>
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#if __has_include(<glog/logging.h>)
+#include <glog/logging.h>  // Ceres logs through glog
+#define ALLOYCOLOR_HAVE_GLOG 1
+#endif
 
 #include "alloycolor/core/error.h"
+#include "alloycolor/core/output.h"
+#include "alloycolor/core/text.h"
 #include "common.h"
 
+namespace {
+
+void PrintError(const std::string& what, const char* kind = "error") {
+  std::cerr << "alloycolor: " << kind << ": " << alloycolor::MessageLine(what) << "\n";
+}
+
+// True when standard output is a pipe or socket whose reader has gone.
+bool StdoutReaderGone() {
+  struct stat info;
+  if (fstat(STDOUT_FILENO, &info) != 0) return false;
+  if (!S_ISFIFO(info.st_mode) && !S_ISSOCK(info.st_mode)) return false;
+  pollfd poll_fd{STDOUT_FILENO, POLLOUT, 0};
+  return poll(&poll_fd, 1, 0) > 0 && (poll_fd.revents & POLLERR) != 0;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
+  // A closed pipe is an error on write (EPIPE), not a signal that kills the program.
+  signal(SIGPIPE, SIG_IGN);
+  alloycolor::InstallTemporaryCleanup();
+#ifdef ALLOYCOLOR_HAVE_GLOG
+  // The solver's own log (warnings, covariance notes) is not the program's output: progress
+  // goes through the progress callbacks, errors through one line.
+  FLAGS_minloglevel = 3;  // FATAL only
+  FLAGS_stderrthreshold = 3;
+#endif
   CLI::App app{
       "alloycolor " ALLOYCOLOR_VERSION
       ": optical constants, reflectance and colour of binary metal alloys at any "
@@ -42,19 +86,27 @@ int main(int argc, char** argv) {
     for (char& c : what) {
       if (c == '\n') c = ' ';
     }
-    std::cerr << "alloycolor: error: " << what << " (see --help)\n";
+    PrintError(what + " (see --help)");
     return 2;
   } catch (const alloycolor::Error& e) {
-    std::cerr << "alloycolor: error: " << e.what() << "\n";
+    if (StdoutReaderGone()) return 0;
+    PrintError(e.what());
+    return 2;
+  } catch (const std::bad_alloc&) {
+    PrintError("out of memory (the input or the options ask for more than this machine has)");
+    return 2;
+  } catch (const nlohmann::json::exception& e) {
+    PrintError(std::string("invalid JSON value: ") + e.what());
     return 2;
   } catch (const std::exception& e) {
-    std::cerr << "alloycolor: internal error: " << e.what() << "\n";
+    PrintError(e.what(), "internal error");
     return 3;
   }
   alloycolor::app::FlushWarnings();
   std::cout.flush();
   if (!std::cout) {
-    std::cerr << "alloycolor: error: cannot write standard output\n";
+    if (StdoutReaderGone()) return 0;
+    PrintError("cannot write standard output");
     return 2;
   }
   return 0;

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "alloycolor/core/error.h"
+#include "alloycolor/core/io.h"
 #include "alloycolor/core/units.h"
 
 namespace alloycolor::color {
@@ -124,8 +125,8 @@ struct Table {
 // Reads a CSV table whose first non-comment line is exactly `header`. Lines
 // starting with '#' and blank lines are skipped.
 Table ReadTable(const std::string& path, const std::string& header) {
-  std::ifstream in(path);
-  if (!in) throw Error(path + ": cannot open the CIE table");
+  // ReadFileText reads regular files only, with a size cap (not a FIFO, not /dev/zero).
+  std::istringstream in(ReadFileText(path));
   const std::size_t columns = std::count(header.begin(), header.end(), ',') + 1;
   Table table;
   table.path = path;

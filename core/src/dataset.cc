@@ -13,6 +13,7 @@
 
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/io.h"
+#include "alloycolor/core/json.h"
 #include "alloycolor/core/text.h"
 
 namespace alloycolor {
@@ -24,12 +25,15 @@ using Json = nlohmann::json;
 constexpr const char* kAtomic = "atomic_fraction_a";
 constexpr const char* kWeight = "weight_fraction_a";
 constexpr double kSameComposition = 1e-9;
+// Samples closer than this in atomic fraction are one composition measured twice: a fit
+// through both would have to bend by 1/kDistinctComposition.
+constexpr double kDistinctComposition = 1e-6;
 
 std::string Quote60(const std::string& text) { return Quote(text, 60); }
 
 Json ParseManifest(const std::string& manifest, const std::string& text) {
   try {
-    return Json::parse(text);
+    return Json::parse(text, RejectDuplicateKeys(manifest));
   } catch (const Json::parse_error& e) {
     // nlohmann's message reads "[json.exception.parse_error.101] parse error at line 3,
     // column 5: syntax error ..."; keep what follows the position.
@@ -174,6 +178,9 @@ Dataset Load(const std::string& dir_or_manifest) {
       if (!entry.at(key).is_string() || entry.at(key).get<std::string>().empty()) {
         Fail(manifest + ": " + where + "." + key + ": not a file name");
       }
+      if (entry.at(key).get<std::string>().find('\0') != std::string::npos) {
+        Fail(manifest + ": " + where + "." + key + ": the file name holds a NUL byte");
+      }
       return entry.at(key).get<std::string>();
     };
     const std::string file = file_field("file");
@@ -238,14 +245,31 @@ Dataset Load(const std::string& dir_or_manifest) {
     dataset.samples.push_back(std::move(sample));
   }
 
+  // One measurement cannot be two compositions (the same file and columns, by any path).
+  for (std::size_t i = 0; i < dataset.samples.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j) {
+      const Sample& s = dataset.samples[j];
+      const Sample& t = dataset.samples[i];
+      if (s.columns.n == t.columns.n && s.columns.k == t.columns.k &&
+          SameFile(s.path, t.path) && (s.k_path.empty() ? t.k_path.empty()
+                                       : !t.k_path.empty() && SameFile(s.k_path, t.k_path))) {
+        Fail(manifest + ": samples[" + std::to_string(j) + "] and samples[" + std::to_string(i) +
+             "] both use " + Quote60(t.file) + " (at x = " + FormatNumber(s.x_given) + " and " +
+             FormatNumber(t.x_given) + "); one file is one composition");
+      }
+    }
+  }
+
   std::stable_sort(dataset.samples.begin(), dataset.samples.end(),
                    [](const Sample& s, const Sample& t) { return s.x_atomic < t.x_atomic; });
   for (std::size_t i = 1; i < dataset.samples.size(); ++i) {
     const Sample& s = dataset.samples[i - 1];
     const Sample& t = dataset.samples[i];
-    if (t.x_atomic - s.x_atomic <= kSameComposition) {
+    if (t.x_atomic - s.x_atomic <= kDistinctComposition) {
       Fail(manifest + ": samples " + Quote60(s.file) + " and " + Quote60(t.file) +
-           " have the same composition, x = " + FormatNumber(s.x_given));
+           " have the same composition, x = " + FormatNumber(s.x_given) +
+           (t.x_given != s.x_given ? " and " + FormatNumber(t.x_given) + " (closer than 1e-6)"
+                                   : std::string()));
     }
   }
 

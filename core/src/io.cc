@@ -16,12 +16,14 @@
 #include <filesystem>
 #include <initializer_list>
 #include <regex>
+#include <set>
 #include <string>
 #include <string_view>
 #include <system_error>
 #include <vector>
 
 #include "alloycolor/core/error.h"
+#include "alloycolor/core/output.h"
 #include "alloycolor/core/permittivity.h"
 #include "alloycolor/core/text.h"
 #include "alloycolor/core/units.h"
@@ -322,16 +324,51 @@ NkSpectrum JoinNK(const std::string& path, const Table& n_table, const Table& k_
   return MakeSpectrum(path, lambda, n, k, 1000.0, "wavelength_um");
 }
 
+// The largest YAML file read: yaml-cpp's nodes take some 200 times the text's size.
+constexpr std::size_t kMaxYamlBytes = 8u << 20;
+
+// YAML 1.2 requires the keys of a mapping to be unique; yaml-cpp keeps both and finds the
+// first. A file that gives a key twice is refused, naming the second one's line.
+void RejectDuplicateYamlKeys(const std::string& path, const YAML::Node& node, int depth) {
+  if (depth > 64) Fail(path + ":" + std::to_string(MarkLine(node.Mark())) + ": nested too deeply");
+  if (node.IsMap()) {
+    std::set<std::string> keys;
+    for (const auto& pair : node) {
+      if (pair.first.IsScalar()) {
+        const std::string& key = pair.first.Scalar();
+        if (!keys.insert(key).second) {
+          Fail(path + ":" + std::to_string(MarkLine(pair.first.Mark())) + ": duplicate key " +
+               Quote(key) + " (YAML keys must be unique)");
+        }
+      }
+      RejectDuplicateYamlKeys(path, pair.second, depth + 1);
+    }
+  } else if (node.IsSequence()) {
+    for (const auto& item : node) RejectDuplicateYamlKeys(path, item, depth + 1);
+  }
+}
+
 // The DATA entries of a refractiveindex.info file; list_at names the DATA line.
 std::vector<Entry> YamlEntries(const std::string& path, const std::string& text,
                                std::string* list_at_out) {
+  if (text.size() > kMaxYamlBytes) {
+    Fail(path + ": " + std::to_string(text.size() >> 20) +
+         " MiB is too large for a refractiveindex.info file (the limit is " +
+         std::to_string(kMaxYamlBytes >> 20) + " MiB)");
+  }
   YAML::Node root;
   try {
-    root = YAML::Load(text);
+    const std::vector<YAML::Node> documents = YAML::LoadAll(text);
+    if (documents.size() > 1) {
+      Fail(path + ":" + std::to_string(MarkLine(documents[1].Mark())) +
+           ": a second YAML document ('---'); a refractiveindex.info file holds one");
+    }
+    if (!documents.empty()) root = documents.front();
   } catch (const YAML::Exception& e) {
     Fail((MarkLine(e.mark) > 0 ? path + ":" + std::to_string(MarkLine(e.mark)) : path) +
          ": invalid YAML: " + e.msg);
   }
+  RejectDuplicateYamlKeys(path, root, 0);
   if (!root.IsMap()) Fail(path + ": not a refractiveindex.info file (no DATA list)");
   const YAML::Node list = root["DATA"];
   if (!list) Fail(path + ": not a refractiveindex.info file (no DATA list)");
@@ -1112,6 +1149,12 @@ std::string ReadFileText(const std::string& path) {
     close(fd);
     Fail(cannot + (S_ISDIR(info.st_mode) ? ErrnoText(EISDIR) : "not a regular file"));
   }
+  if (info.st_size > kMaxInputFileBytes) {
+    close(fd);
+    Fail(cannot + "the file is " + std::to_string(info.st_size / (1 << 20)) +
+         " MiB, over the " + std::to_string(kMaxInputFileBytes >> 20) + " MiB an input may have");
+  }
+  NoteInputFile(path);
   std::string text;
   char buffer[65536];
   while (true) {
@@ -1123,45 +1166,15 @@ std::string ReadFileText(const std::string& path) {
       Fail(cannot + ErrnoText(error));
     }
     if (got == 0) break;
+    if (text.size() + static_cast<std::size_t>(got) > static_cast<std::size_t>(kMaxInputFileBytes)) {
+      close(fd);
+      Fail(cannot + "the file grew past the " + std::to_string(kMaxInputFileBytes >> 20) +
+           " MiB an input may have");
+    }
     text.append(buffer, static_cast<std::size_t>(got));
   }
   close(fd);
   return text;
-}
-
-void WriteFileAtomic(const std::string& path, const std::string& contents) {
-  const std::string temp = path + ".tmp." + std::to_string(getpid());
-  const std::string cannot = "cannot write '" + path + "': ";
-  const int fd = open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC | O_NOFOLLOW, 0666);
-  if (fd < 0) Fail(cannot + ErrnoText(errno));
-  const auto fail = [&](int error, bool is_open) {
-    if (is_open) close(fd);
-    unlink(temp.c_str());
-    Fail(cannot + ErrnoText(error));
-  };
-  // A replaced file keeps its permissions.
-  struct stat old_info;
-  if (stat(path.c_str(), &old_info) == 0 && S_ISREG(old_info.st_mode)) {
-    fchmod(fd, old_info.st_mode & 07777);
-  }
-  std::size_t written = 0;
-  while (written < contents.size()) {
-    const ssize_t put = write(fd, contents.data() + written, contents.size() - written);
-    if (put < 0 && errno == EINTR) continue;
-    if (put < 0) fail(errno, true);
-    written += static_cast<std::size_t>(put);
-  }
-  if (fsync(fd) != 0) fail(errno, true);
-  if (close(fd) != 0) fail(errno, false);
-  if (rename(temp.c_str(), path.c_str()) != 0) fail(errno, false);
-  // Make the rename itself durable; a failure here leaves a complete file, so it is ignored.
-  const std::string folder = std::filesystem::path(path).parent_path().string();
-  const int dir_fd =
-      open(folder.empty() ? "." : folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (dir_fd >= 0) {
-    fsync(dir_fd);
-    close(dir_fd);
-  }
 }
 
 std::string Fnv1a64Hex(const std::string& bytes) {

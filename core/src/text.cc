@@ -27,6 +27,20 @@ std::string Quote(std::string_view text, std::size_t max_chars) {
   return "'" + std::string(text.substr(0, max_chars)) + "...'";
 }
 
+std::string MessageLine(std::string_view text, std::size_t max_chars) {
+  std::string line;
+  line.reserve(std::min(text.size(), max_chars + 3));
+  for (const char c : text) {
+    if (line.size() >= max_chars) {
+      line += "...";
+      break;
+    }
+    const unsigned char u = static_cast<unsigned char>(c);
+    line += (u < 0x20 || u == 0x7f) ? '?' : c;
+  }
+  return line;
+}
+
 std::string FormatNumber(double value) {
   char buffer[64];
   std::snprintf(buffer, sizeof(buffer), "%.10g", value);

@@ -2,11 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <sstream>
 
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/io.h"
+#include "alloycolor/core/json.h"
+#include "alloycolor/core/text.h"
 #include "alloycolor/model/optics.h"
 #include "alloycolor/model/registry.h"
 
@@ -23,6 +26,10 @@ std::vector<std::complex<double>> AlloyModel::Index(
 }
 
 namespace {
+
+// The longest wavelength a model file may state: 1 mm, the far infrared's end. Beyond it
+// the grids built over the range would not fit in memory.
+constexpr double kMaxModelWavelengthNm = 1e6;
 
 // Any model on a grid, through AlloyModel::Permittivity.
 class GenericBoundModel : public BoundModel {
@@ -241,6 +248,15 @@ void AlloyModel::ReadCommon(const nlohmann::json& doc) {
   if (!(x_min_ <= x_max_) || !(lambda_min_nm_ < lambda_max_nm_)) {
     throw Error("x_range or lambda_range_nm: empty range");
   }
+  if (!(x_min_ >= 0 && x_max_ <= 1)) throw Error("x_range: outside [0, 1]");
+  if (!(lambda_min_nm_ > 0 && lambda_max_nm_ <= kMaxModelWavelengthNm)) {
+    throw Error("lambda_range_nm: [" + FormatNumber(lambda_min_nm_) + ", " +
+                FormatNumber(lambda_max_nm_) + "] lies outside (0, " +
+                FormatNumber(kMaxModelWavelengthNm) + "] nm");
+  }
+  if (std::string(system_.a.symbol) == system_.b.symbol) {
+    throw Error(std::string("system: a and b are both '") + system_.a.symbol + "'");
+  }
   const nlohmann::json& ts = Field(doc, "training_samples", "model");
   if (!ts.is_array()) throw Error("training_samples: expected an array");
   training_.clear();
@@ -319,7 +335,9 @@ std::unique_ptr<AlloyModel> ModelFromJson(const nlohmann::json& doc,
       throw Error("format is '" + format + "', expected '" + kModelFormatName + "'");
     }
     const nlohmann::json& version = Field(doc, "version", "model");
-    if (!version.is_number_integer() || version.get<int>() != kModelFormatVersion) {
+    std::int64_t version_number = 0;
+    if (!WholeNumber(version, 0, INT64_MAX, &version_number) ||
+        version_number != kModelFormatVersion) {
       throw Error("unsupported version " + version.dump() + " (this program reads version " +
                   std::to_string(kModelFormatVersion) + ")");
     }
@@ -338,7 +356,7 @@ std::unique_ptr<AlloyModel> ReadModelFile(const std::string& path) {
   const std::string text = ReadFileText(path);
   nlohmann::json doc;
   try {
-    doc = nlohmann::json::parse(text);
+    doc = nlohmann::json::parse(text, RejectDuplicateKeys(path));
   } catch (const nlohmann::json::exception& e) {  // parse_error, or out_of_range for 1e999
     throw Error(path + ": not valid JSON (" + e.what() + ")");
   }

@@ -78,11 +78,18 @@ NkSpectrum ReadNkPair(const std::string& n_path, const std::string& k_path,
 std::string NkCsvText(const std::vector<double>& lambda_nm, const std::vector<double>& n,
                       const std::vector<double>& k);
 
-// Whole file as a string; throws Error naming the file when it cannot be read.
+// The largest input file read (a refractiveindex.info file is under 1 MiB, the largest
+// lab export a few MiB).
+inline constexpr long long kMaxInputFileBytes = 256LL << 20;
+
+// Whole file as a string; throws Error naming the file when it cannot be read, is not a
+// regular file (a FIFO, a device) or is over kMaxInputFileBytes. The file is noted as an
+// input of the command (output.h), so that no output replaces it.
 std::string ReadFileText(const std::string& path);
 
 // Writes through a temporary file in the same folder renamed into place, so that a
-// failed or interrupted write never leaves a damaged file nor destroys the old one.
+// failed or interrupted write never leaves a damaged file nor destroys the old one;
+// refuses inputs and special files (output.h, WriteFileSetAtomic, which implements it).
 void WriteFileAtomic(const std::string& path, const std::string& contents);
 
 // FNV-1a 64-bit checksum of bytes, as 16 hex digits.

@@ -22,6 +22,10 @@ namespace alloycolor {
 // 'text', or its first max_chars characters followed by "...".
 std::string Quote(std::string_view text, std::size_t max_chars = 40);
 
+// A message made safe for one terminal line: control characters (newlines, escape
+// codes) become '?', and text over max_chars is cut, ending in "...".
+std::string MessageLine(std::string_view text, std::size_t max_chars = 300);
+
 // A number for a message: up to 10 significant digits.
 std::string FormatNumber(double value);
 

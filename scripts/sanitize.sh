@@ -1,13 +1,14 @@
 #!/usr/bin/env bash
 # The whole test suite under AddressSanitizer and UndefinedBehaviorSanitizer: a separate
-# build in build-asan/ (-DALLOYCOLOR_SANITIZE=ON, RelWithDebInfo, no benchmarks), then ctest.
+# build in build-asan/ (-DALLOYCOLOR_SANITIZE=ON, RelWithDebInfo, no benchmarks, no Python
+# module: an uninstrumented interpreter cannot load ASan-instrumented code), then ctest.
 # Every test that runs the real program runs the sanitized one. .ci/run calls this after
 # scripts/test.sh (which installs the packages).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 start=$SECONDS
 cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DALLOYCOLOR_SANITIZE=ON \
-  -DALLOYCOLOR_BUILD_BENCH=OFF >/dev/null
+  -DALLOYCOLOR_BUILD_BENCH=OFF -DALLOYCOLOR_BUILD_PYTHON=OFF >/dev/null
 cmake --build build-asan -j"$(nproc)"
 built=$SECONDS
 # Any report fails the test that triggered it (UBSan is built with -fno-sanitize-recover).

@@ -2,6 +2,7 @@
 // calculations of eq. 7, 11, 12 and the shipped data.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <cstdio>
@@ -13,6 +14,7 @@
 #include "alloycolor/core/dataset.h"
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/io.h"
+#include "alloycolor/model/interpolation.h"
 #include "alloycolor/model/sample_models.h"
 #include "alloycolor/core/units.h"
 #include "test_util.h"
@@ -165,6 +167,87 @@ TEST(DefaultGrid, VisibleForAuAgAndInfraredForNbSn) {
   const std::vector<double> infrared = DefaultGrid(LoadDataset(DataDir() + "/Nb-Sn"));
   EXPECT_GE(infrared.front(), 1000.0);
   EXPECT_EQ(infrared.size(), 101u);
+}
+
+}  // namespace
+}  // namespace alloycolor
+
+namespace alloycolor {
+namespace {
+
+// Hand calculations for (0, 0), (1, 1), (2, 0). Natural spline: the middle second derivative
+// m solves 2 (1 + 1) m = 6 ((0 - 1) - (1 - 0)), m = -3, so on [0, 1]
+// S(x) = (m / 6) x^3 + (1 - m / 6) x and S(0.5) = 0.6875. PCHIP: the middle slope is 0
+// (the secants change sign), the end slope ((2 h0 + h1) d0 - h0 d1) / (h0 + h1) = 2, so the
+// Hermite cubic on [0, 1] gives 0.125 * 2 + 0.5 * 1 = 0.75 at 0.5.
+TEST(Interpolation, MatchHandCalculations) {
+  const std::vector<double> xs = {0, 1, 2}, ys = {0, 1, 0};
+  const Interpolant spline(Interpolation::kNaturalSpline, xs, ys);
+  const Interpolant pchip(Interpolation::kPchip, xs, ys);
+  const Interpolant linear(Interpolation::kLinear, xs, ys);
+  EXPECT_NEAR(spline(0.5), 0.6875, 1e-12);
+  EXPECT_NEAR(spline(1.5), 0.6875, 1e-12);
+  EXPECT_NEAR(pchip(0.5), 0.75, 1e-12);
+  EXPECT_NEAR(linear(0.5), 0.5, 1e-12);
+  for (double x : {0.0, 1.0, 2.0}) {
+    EXPECT_DOUBLE_EQ(spline(x), ys[static_cast<int>(x)]);
+    EXPECT_DOUBLE_EQ(pchip(x), ys[static_cast<int>(x)]);
+  }
+  // On (0, 0), (1, 1), (2, 1) PCHIP stays within the data; the spline overshoots past x = 1
+  // (its slope there is (1 - 1) - (2 m) / 6 = 0.5 with m = -1.5).
+  const Interpolant flat_pchip(Interpolation::kPchip, xs, {0, 1, 1});
+  const Interpolant flat_spline(Interpolation::kNaturalSpline, xs, {0, 1, 1});
+  double pchip_max = 0, spline_max = 0;
+  for (int i = 0; i <= 200; ++i) {
+    pchip_max = std::max(pchip_max, flat_pchip(i / 100.0));
+    spline_max = std::max(spline_max, flat_spline(i / 100.0));
+  }
+  EXPECT_LE(pchip_max, 1.0 + 1e-12);
+  EXPECT_GT(spline_max, 1.0);
+  // Beyond the ends: the straight line with the end slope (spline: S'(0) = 1 - m / 6 = 1.5).
+  EXPECT_NEAR(spline(-1.0), -1.5, 1e-12);
+  EXPECT_NEAR(pchip(-0.5), -1.0, 1e-12);
+  // Monotone data stay monotone under PCHIP (Fritsch-Carlson).
+  const Interpolant mono(Interpolation::kPchip, {0, 0.2, 0.5, 1}, {0, 0.9, 1.0, 5.0});
+  double last = -1;
+  for (int i = 0; i <= 100; ++i) {
+    const double v = mono(i / 100.0);
+    EXPECT_GE(v, last - 1e-12) << i;
+    last = v;
+  }
+  // With two points every scheme is the straight line.
+  EXPECT_NEAR(Interpolant(Interpolation::kNaturalSpline, {0, 1}, {2, 4})(0.25), 2.5, 1e-12);
+  EXPECT_NEAR(Interpolant(Interpolation::kPchip, {0, 1}, {2, 4})(0.25), 2.5, 1e-12);
+}
+
+// The eps-pchip and eps-spline models are those interpolants applied to eps1 and eps2 of the
+// samples at each wavelength, and reproduce the samples.
+TEST(SampleModels, CubicBaselinesInterpolateEps) {
+  const Dataset data = LoadDataset(DataDir() + "/Au-Ag");
+  const Dataset train = WithoutSamples(data, {0.1, 0.2, 0.3, 0.4, 0.6, 0.7, 0.8, 0.9});
+  const SampleModel pchip(SampleModel::Kind::kEpsPchip, train);
+  const SampleModel spline(SampleModel::Kind::kEpsSpline, train);
+  EXPECT_EQ(pchip.method(), "eps-pchip");
+  EXPECT_EQ(spline.method(), "eps-spline");
+  for (double lambda : {450.0, 550.0, 650.0}) {
+    std::vector<double> xs, e1, e2;
+    for (const Sample& s : train.samples) {
+      const std::complex<double> n = NkAt(s.nk, lambda);
+      xs.push_back(s.x_atomic);
+      e1.push_back((n * n).real());
+      e2.push_back((n * n).imag());
+    }
+    for (double x : {0.0, 0.25, 0.5, 0.75, 1.0}) {
+      const std::complex<double> got = pchip.Permittivity(x, {lambda})[0];
+      EXPECT_NEAR(got.real(), Interpolant(Interpolation::kPchip, xs, e1)(x), 1e-12);
+      EXPECT_NEAR(got.imag(), Interpolant(Interpolation::kPchip, xs, e2)(x), 1e-12);
+      const std::complex<double> s = spline.Permittivity(x, {lambda})[0];
+      EXPECT_NEAR(s.real(), Interpolant(Interpolation::kNaturalSpline, xs, e1)(x), 1e-12);
+    }
+  }
+  // A model file round trip keeps the method.
+  EXPECT_EQ(ModelFromJson(pchip.ToJson(), "pchip")->method(), "eps-pchip");
+  EXPECT_EQ(ModelFromJson(spline.ToJson(), "spline")->method(), "eps-spline");
 }
 
 }  // namespace

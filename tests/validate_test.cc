@@ -344,3 +344,41 @@ TEST(Validate, ReplacesAnOldReportWhole) {
 
 }  // namespace
 }  // namespace alloycolor
+
+namespace alloycolor {
+namespace {
+
+// fit --method auto: every method's leave-one-out score in the model file equals the mean
+// CIEDE2000 that `validate --loo` reports for that method on its own, and the chosen method
+// is the lowest (a simpler one within 2 % wins).
+TEST(AutoMethod, ChoosesTheLowestLeaveOneOutScoreAndRecordsTheTable) {
+  const std::string dir = MakeTempDir();
+  const std::string data = DataDir() + "/Cu-Zn/dataset-werner-zn.json";
+  const RunResult fit = RunProgram({"fit", "--data", data, "--out", dir + "/auto.json"});
+  ASSERT_EQ(fit.status, 0) << fit.err;
+  EXPECT_NE(fit.err.find("auto chose"), std::string::npos) << fit.err;
+  std::ifstream in(dir + "/auto.json");
+  const nlohmann::json model = nlohmann::json::parse(in);
+  const nlohmann::json& selection = model["fit"]["selection"];
+  ASSERT_TRUE(selection.is_object()) << model["fit"].dump();
+  const RunResult loo =
+      RunProgram({"validate", "--data", data, "--loo", "--methods",
+                  "paper,eps-linear,eps-pchip,eps-spline,smooth", "--out", dir + "/v", "--quiet"});
+  ASSERT_EQ(loo.status, 0) << loo.err;
+  std::ifstream rin(dir + "/v/report.json");
+  const nlohmann::json report = nlohmann::json::parse(rin);
+  std::map<std::string, double> mean;
+  for (const auto& row : selection["scores"]) {
+    if (row.contains("mean")) mean[row["method"]] = row["mean"].get<double>();
+  }
+  for (const char* m : {"paper", "eps-linear", "eps-pchip", "eps-spline", "smooth"}) {
+    ASSERT_TRUE(mean.count(m)) << m;
+    EXPECT_NEAR(mean[m], report["summary"]["delta_e00_0"][m]["mean"].get<double>(), 1e-9) << m;
+  }
+  const std::string chosen = model["method"];
+  for (const auto& [m, v] : mean) EXPECT_LE(mean[chosen], v / 0.98 + 1e-12) << m;
+  EXPECT_NE(selection["reason"].get<std::string>().find(chosen), std::string::npos);
+}
+
+}  // namespace
+}  // namespace alloycolor

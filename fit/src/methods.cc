@@ -96,10 +96,12 @@ std::unique_ptr<AlloyModel> BuildModel(const std::string& method, const Dataset&
   throw Error("method '" + method + "' cannot be fitted to data");
 }
 
+constexpr double kAutoTolerance = 1.10;
+
 std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings& settings) {
   // Simplest first: ties go to the earlier.
-  const std::vector<std::string> order = {"eps-linear", "eps-pchip", "eps-spline",
-                                          "paper",      "smooth",    "physical"};
+  const std::vector<std::string> order = {"eps-pchip", "eps-linear", "eps-spline",
+                                          "paper",     "smooth",     "physical"};
   MethodSelection selection;
   std::vector<std::vector<double>> splits;
   for (size_t i = 1; i + 1 < dataset.samples.size(); ++i) {
@@ -158,11 +160,15 @@ std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings&
       selection.scores.push_back(score);
     }
     if (selection.metric.empty()) selection.metric = "reflectance_rms at normal incidence";
+    // The simplest method within kAutoTolerance of the lowest score: leave-one-out with few
+    // samples flatters the flexible methods.
     for (const MethodScore& s : selection.scores) {
-      if (!s.error.empty()) continue;
-      if (s.mean < best * 0.98) {
-        best = s.mean;
+      if (s.error.empty()) best = std::min(best, s.mean);
+    }
+    for (const MethodScore& s : selection.scores) {
+      if (s.error.empty() && s.mean <= best * kAutoTolerance) {
         best_score = &s;
+        break;
       }
     }
     if (best_score == nullptr) throw Error(dataset.manifest_path + ": auto: no method could be scored");

@@ -42,10 +42,10 @@ struct MethodBuilder {
 // "auto", the default of `alloycolor fit`: every other method is scored by leave-one-
 // composition-out over the interior samples (each held out in turn, the method built on
 // the rest; mean CIEDE2000 at normal incidence, or reflectance RMS for data without colour);
-// the lowest mean wins, a method within 2 % of a simpler one's score gives way to it
-// (simplest first: eps-linear, eps-pchip, eps-spline, paper, smooth, physical). With fewer
-// than three compositions nothing can be held out and eps-pchip is chosen (with two samples
-// every interpolation is the straight line). The model of the chosen method, built on all
+// the simplest method whose mean lies within 10 % of the lowest wins (simplest first:
+// eps-pchip, eps-linear, eps-spline, paper, smooth, physical), since leave-one-out with few
+// samples flatters the flexible methods. With fewer than three compositions nothing can be
+// held out and eps-pchip is chosen (with two samples every interpolation is the line). The model of the chosen method, built on all
 // samples, carries the table (FitSummary::selection).
 inline constexpr const char* kAutoMethod = "auto";
 std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings& settings);

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <nlohmann/json.hpp>
 
+#include "alloycolor/core/markup.h"
 #include "alloycolor/color/colorimetry.h"
 #include "alloycolor/core/composition.h"
 
@@ -135,29 +136,6 @@ std::string Replace(std::string text, const std::string& key, const std::string&
   return text;
 }
 
-std::string HtmlEscape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
-
 }  // namespace
 
 std::string ExplorePageHtml(const ExplorePageInputs& in) {
@@ -204,8 +182,8 @@ std::string ExplorePageHtml(const ExplorePageInputs& in) {
     data_text.replace(at, 2, "<\\/");
   }
   const std::string title = "alloycolor explorer: " + system.Name() + ", " + model.method();
-  std::string head = Replace(kExploreHtmlHead, "@TITLE@", HtmlEscape(title));
-  const std::string body = Replace(kExploreBody, "@SYSTEM@", HtmlEscape(system.Name()));
+  std::string head = Replace(kExploreHtmlHead, "@TITLE@", EscapeXml(title));
+  const std::string body = Replace(kExploreBody, "@SYSTEM@", EscapeXml(system.Name()));
   std::string html;
   html += head;
   html += "<style>\n";

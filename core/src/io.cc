@@ -446,20 +446,12 @@ NkSpectrum ParseYaml(const std::string& path, const std::string& text,
             : ""));
 }
 
-// The table of a file holding one `tabulated n` (or `tabulated k`) entry and nothing else.
-Table ReadSingleTabulated(const std::string& path, EntryKind kind,
-                          std::vector<std::string>* warnings) {
-  const std::string text = ReadFileText(path);
-  const char* wanted = kind == EntryKind::kN ? "'tabulated n'" : "'tabulated k'";
+// f(), with any exception from yaml-cpp or the standard library turned into an Error naming
+// the file (and the line, where yaml-cpp knows it).
+template <typename F>
+auto YamlGuarded(const std::string& path, F&& f) -> decltype(f()) {
   try {
-    std::string list_at;
-    const std::vector<Entry> entries = YamlEntries(path, text, &list_at);
-    if (entries.size() != 1 || entries[0].kind != kind) {
-      Fail(list_at + "DATA holds " + EntriesHeld(entries) + "; expected " + wanted +
-           " alone (this file is the " + (kind == EntryKind::kN ? "n" : "k") + " file of a pair)");
-    }
-    return ReadYamlTable(path, text, entries[0],
-                         Columns{{"wavelength_um", kind == EntryKind::kN ? "n" : "k"}}, warnings);
+    return f();
   } catch (const Error&) {
     throw;
   } catch (const YAML::Exception& e) {
@@ -470,19 +462,26 @@ Table ReadSingleTabulated(const std::string& path, EntryKind kind,
   }
 }
 
-// Any exception from yaml-cpp or the standard library becomes an Error naming the file.
+// The table of a file holding one `tabulated n` (or `tabulated k`) entry and nothing else.
+Table ReadSingleTabulated(const std::string& path, EntryKind kind,
+                          std::vector<std::string>* warnings) {
+  const std::string text = ReadFileText(path);
+  const char* wanted = kind == EntryKind::kN ? "'tabulated n'" : "'tabulated k'";
+  return YamlGuarded(path, [&]() {
+    std::string list_at;
+    const std::vector<Entry> entries = YamlEntries(path, text, &list_at);
+    if (entries.size() != 1 || entries[0].kind != kind) {
+      Fail(list_at + "DATA holds " + EntriesHeld(entries) + "; expected " + wanted +
+           " alone (this file is the " + (kind == EntryKind::kN ? "n" : "k") + " file of a pair)");
+    }
+    return ReadYamlTable(path, text, entries[0],
+                         Columns{{"wavelength_um", kind == EntryKind::kN ? "n" : "k"}}, warnings);
+  });
+}
+
 NkSpectrum ParseYamlGuarded(const std::string& path, const std::string& text,
                             std::vector<std::string>* warnings) {
-  try {
-    return ParseYaml(path, text, warnings);
-  } catch (const Error&) {
-    throw;
-  } catch (const YAML::Exception& e) {
-    Fail((MarkLine(e.mark) > 0 ? path + ":" + std::to_string(MarkLine(e.mark)) : path) +
-         ": invalid YAML: " + e.msg);
-  } catch (const std::exception& e) {
-    Fail(path + ": cannot read: " + e.what());
-  }
+  return YamlGuarded(path, [&]() { return ParseYaml(path, text, warnings); });
 }
 
 // ---- delimited text ----

@@ -1,0 +1,406 @@
+// The explorer page's application script (see explore_page.h): the sliders, the canvas
+// shading from the precomputed tables, the plots and the address state. Kept as plain text
+// so that it reads as the script it is.
+#include "explore_page.h"
+
+namespace alloycolor::app {
+
+const char kExploreAppJs[] = R"JS(
+"use strict";
+(() => {
+const C = AlloyColour;
+const D = JSON.parse(document.getElementById("explorer-data").textContent);
+const $ = (id) => document.getElementById(id);
+const T = D.table;
+
+// ---- Decoding the program's tables.
+function bytes(b64) {
+  const bin = atob(b64);
+  const out = new Uint8Array(bin.length);
+  for (let i = 0; i < bin.length; i++) out[i] = bin.charCodeAt(i);
+  return out;
+}
+const f32 = (b64) => { const u = bytes(b64); return new Float32Array(u.buffer, 0, u.length >> 2); };
+const M = T.mu_nodes;
+const muNodes = (r) => (r === 0 ? T.mu_nodes : T.rough_mu_nodes);
+const ILLS = T.illuminants.map((ill) => ({
+  name: ill.name, white: ill.white, xyz: ill.xyz.map(f32), sigma: ill.sigma ? f32(ill.sigma) : null,
+}));
+const SEGMENTS = T.segments.map((s) => ({ lo: s[0], hi: s[1], intervals: s[2], first: s[3] }));
+const NL = T.lambda_nm.length;
+const SPECTRA = { n: f32(T.n), k: f32(T.k), r: f32(T.r) };
+const SIGMA_ANGLES = T.sigma_angles_deg;
+const X_LO = D.x_range[0], X_HI = D.x_range[1];
+const SYS = D.system;
+const GOLD = SYS.a === "Au" ? "a" : SYS.b === "Au" ? "b" : null;
+const MATRIX = D.srgb_matrix;
+
+function decodeTile(t) {
+  const size = t.size, cov = bytes(t.coverage);
+  const nb = bytes(t.normals);
+  const q = new Int16Array(nb.buffer, 0, nb.length >> 1);
+  const nx = new Float32Array(size * size), ny = new Float32Array(size * size);
+  const nz = new Float32Array(size * size).fill(1);
+  for (let p = 0, j = 0; p < size * size; p++) {
+    if (!cov[p]) continue;
+    const x = q[j++] / 32767, y = q[j++] / 32767;
+    nx[p] = x; ny[p] = y; nz[p] = Math.sqrt(Math.max(0, 1 - x * x - y * y));
+  }
+  return { size, cov, nx, ny, nz, light: {} };
+}
+const TILES = { sphere: decodeTile(D.tiles.sphere), ring: decodeTile(D.tiles.ring) };
+const ENV = D.environment.map((m) => {
+  const u = bytes(m.texels), q = new Uint16Array(u.buffer, 0, u.length >> 1);
+  const e = new Float32Array(q.length);
+  for (let i = 0; i < q.length; i++) e[i] = q[i] * m.scale;
+  return { width: m.width, height: m.height, texels: e };
+});
+
+// E at each pixel of a tile for roughness r in studio light (mirror direction, bilinear
+// in the latitude-longitude map as PrefilteredEnvironment::At reads its own).
+function tileLight(tile, r) {
+  if (tile.light[r]) return tile.light[r];
+  const W = ENV[r].width, H = ENV[r].height, map = ENV[r].texels;
+  const out = new Float32Array(tile.size * tile.size);
+  for (let p = 0; p < out.length; p++) {
+    if (!tile.cov[p]) continue;
+    const z = tile.nz[p];
+    const rx = 2 * z * tile.nx[p], ry = 2 * z * tile.ny[p], rz = 2 * z * z - 1;
+    const theta = Math.acos(Math.min(1, Math.max(-1, ry)));
+    let phi = Math.atan2(rz, rx);
+    if (phi < 0) phi += 2 * Math.PI;
+    const fy = Math.min(Math.max(theta * H / Math.PI - 0.5, 0), H - 1);
+    const fx = phi * W / (2 * Math.PI) - 0.5;
+    const j0 = Math.min(Math.floor(fy), H - 1), j1 = Math.min(j0 + 1, H - 1), ty = fy - j0;
+    const fl = Math.floor(fx), tx = fx - fl;
+    const i0 = ((fl % W) + W) % W, i1 = (i0 + 1) % W;
+    const top = map[j0 * W + i0] + tx * (map[j0 * W + i1] - map[j0 * W + i0]);
+    const bottom = map[j1 * W + i0] + tx * (map[j1 * W + i1] - map[j1 * W + i0]);
+    out[p] = top + ty * (bottom - top);
+  }
+  tile.light[r] = out;
+  return out;
+}
+
+// ---- Interpolating the tables.
+function weightsAt(x) { return C.segmentWeights(C.findSegment(SEGMENTS, x), x); }
+function rowAt(ill, r, x) {
+  const { first, w } = weightsAt(x);
+  const row = 3 * muNodes(r), src = ILLS[ill].xyz[r], out = new Float64Array(row);
+  for (let q = 0; q < 4; q++) {
+    const base = (first + q) * row, wq = w[q];
+    for (let i = 0; i < row; i++) out[i] += wq * src[base + i];
+  }
+  return out;
+}
+function xyzAt(row, mu) {
+  const m = row.length / 3, t = Math.min(Math.max(mu, 0), 1) * (m - 1);
+  const i = Math.min(Math.floor(t), m - 2), f = t - i, a = 3 * i;
+  return [row[a] + f * (row[a + 3] - row[a]), row[a + 1] + f * (row[a + 4] - row[a + 1]),
+          row[a + 2] + f * (row[a + 5] - row[a + 2])];
+}
+function spectrumAt(x) {
+  const { first, w } = weightsAt(x), out = {};
+  for (const key of ["n", "k", "r"]) {
+    const src = SPECTRA[key], v = new Float64Array(NL);
+    for (let q = 0; q < 4; q++) for (let l = 0; l < NL; l++) v[l] += w[q] * src[(first + q) * NL + l];
+    out[key] = v;
+  }
+  return out;
+}
+// Linear in x between nodes and in angle between the sigma angles.
+function sigmaAt(ill, x, angle) {
+  const s = ILLS[ill].sigma;
+  if (!s) return null;
+  const seg = C.findSegment(SEGMENTS, x), step = (seg.hi - seg.lo) / seg.intervals;
+  const u = Math.min(Math.max((x - seg.lo) / step, 0), seg.intervals);
+  const i = Math.min(Math.floor(u), seg.intervals - 1), f = u - i, node = seg.first + i;
+  const na = SIGMA_ANGLES.length;
+  let a = 0;
+  while (a + 2 < na && angle > SIGMA_ANGLES[a + 1]) a++;
+  const g = na > 1 ? Math.min(Math.max((angle - SIGMA_ANGLES[a]) / (SIGMA_ANGLES[a + 1] - SIGMA_ANGLES[a]), 0), 1) : 0;
+  const at = (nd) => (na > 1 ? s[nd * na + a] * (1 - g) + s[nd * na + a + 1] * g : s[nd * na]);
+  return at(node) * (1 - f) + at(node + 1) * f;
+}
+
+// ---- Compositions.
+const weight = (x) => C.weightFromAtomic(x, SYS.mass_a, SYS.mass_b);
+const karat = (x) => (GOLD === "a" ? 24 * weight(x) : GOLD === "b" ? 24 * (1 - weight(x)) : null);
+function parseComposition(text) {
+  const s = String(text).trim().toLowerCase().replace(/\s+/g, "");
+  let m;
+  if ((m = s.match(/^([0-9]*\.?[0-9]+)(k|kt|karat)$/))) {
+    if (!GOLD) return NaN;
+    const wGold = parseFloat(m[1]) / 24;
+    return C.atomicFromWeight(GOLD === "a" ? wGold : 1 - wGold, SYS.mass_a, SYS.mass_b);
+  }
+  if ((m = s.match(/^([0-9]*\.?[0-9]+)wt%$/))) return C.atomicFromWeight(parseFloat(m[1]) / 100, SYS.mass_a, SYS.mass_b);
+  if ((m = s.match(/^([0-9]*\.?[0-9]+)(at)?%$/))) return parseFloat(m[1]) / 100;
+  if ((m = s.match(/^([0-9]*\.?[0-9]+)$/))) return parseFloat(m[1]);
+  return NaN;
+}
+const inRange = (x) => x >= X_LO - 1e-9 && x <= X_HI + 1e-9;
+const clampX = (x) => Math.min(Math.max(x, X_LO), X_HI);
+function describe(x) {
+  const at = (100 * x).toFixed(1) + " at% " + SYS.a, wt = (100 * weight(x)).toFixed(1) + " wt%";
+  const k = karat(x);
+  return { main: k !== null ? k.toFixed(1) + " k" : at, rest: k !== null ? at + " · " + wt + " " + SYS.a : wt + " " + SYS.a };
+}
+
+// ---- State, kept in the address.
+const FINISHES = T.roughness;
+const state = { x: null, x2: null, ill: null, angle: 0, light: "studio", rough: 0 };
+function defaults() {
+  const k18 = GOLD ? parseComposition("18k") : NaN, k14 = GOLD ? parseComposition("14k") : NaN;
+  const d65 = ILLS.findIndex((i) => i.name === "D65");
+  return {
+    x: inRange(k18) ? k18 : X_LO + 0.75 * (X_HI - X_LO),
+    x2: inRange(k14) ? k14 : X_LO + 0.5 * (X_HI - X_LO),
+    ill: d65 >= 0 ? d65 : 0, angle: 0, light: "studio", rough: 0,
+  };
+}
+function readHash() {
+  Object.assign(state, defaults());
+  const params = new URLSearchParams(location.hash.replace(/^#/, ""));
+  const bad = [];
+  const comp = (key) => {
+    if (!params.has(key)) return;
+    const v = parseComposition(params.get(key));
+    if (Number.isFinite(v) && inRange(v)) state[key] = clampX(v); else bad.push(key);
+  };
+  comp("x"); comp("x2");
+  if (params.has("ill")) {
+    const i = ILLS.findIndex((ill) => ill.name.toLowerCase() === params.get("ill").toLowerCase());
+    if (i >= 0) state.ill = i; else bad.push("ill");
+  }
+  if (params.has("angle")) {
+    const a = parseFloat(params.get("angle"));
+    if (a >= 0 && a <= 90) state.angle = a; else bad.push("angle");
+  }
+  if (params.has("light")) {
+    const l = params.get("light");
+    if (l === "studio" || l === "uniform") state.light = l; else bad.push("light");
+  }
+  if (params.has("rough")) {
+    const r = FINISHES.findIndex((v) => Math.abs(v - parseFloat(params.get("rough"))) < 1e-9);
+    if (r >= 0) state.rough = r; else bad.push("rough");
+  }
+  document.body.dataset.badParameters = bad.join(",");
+}
+const fmtX = (x) => String(Math.round(x * 1e6) / 1e6);
+function stateString() {
+  return "x=" + fmtX(state.x) + "&x2=" + fmtX(state.x2) + "&ill=" + ILLS[state.ill].name +
+         "&angle=" + state.angle + "&light=" + state.light + "&rough=" + FINISHES[state.rough];
+}
+function writeHash() {
+  const s = stateString();
+  if (location.hash.replace(/^#/, "") !== s) history.replaceState(null, "", "#" + s);
+  document.body.dataset.state = s;
+}
+
+// ---- Drawing.
+function drawTile(canvas, tile, row, light) {
+  const size = tile.size;
+  if (canvas.width !== size) { canvas.width = size; canvas.height = size; }
+  const ctx = canvas.getContext("2d");
+  const img = ctx.createImageData(size, size), d = img.data;
+  const m = MATRIX, nodes = row.length / 3;
+  for (let p = 0; p < size * size; p++) {
+    const cov = tile.cov[p];
+    if (!cov) continue;
+    const t = Math.min(Math.max(tile.nz[p], 0), 1) * (nodes - 1);
+    const i = Math.min(Math.floor(t), nodes - 2), f = t - i, a = 3 * i;
+    const e = light ? light[p] : 1;
+    const X = e * (row[a] + f * (row[a + 3] - row[a]));
+    const Y = e * (row[a + 1] + f * (row[a + 4] - row[a + 1]));
+    const Z = e * (row[a + 2] + f * (row[a + 5] - row[a + 2]));
+    const o = 4 * p;
+    d[o] = C.srgb8(m[0][0] * X + m[0][1] * Y + m[0][2] * Z);
+    d[o + 1] = C.srgb8(m[1][0] * X + m[1][1] * Y + m[1][2] * Z);
+    d[o + 2] = C.srgb8(m[2][0] * X + m[2][1] * Y + m[2][2] * Z);
+    d[o + 3] = cov;
+  }
+  ctx.putImageData(img, 0, 0);
+  // Pixel samples for checking the page: the centre and a few fixed points (tile fractions).
+  const points = [[0.5, 0.5], [0.5 + 0.45 * 0.5, 0.5], [0.5, 0.5 - 0.45 * 0.7], [0.5 - 0.45 * 0.86, 0.5], [0.5, 0.5 + 0.45 * 0.75]];
+  const samples = points.map(([u, v]) => {
+    const px = Math.min(size - 1, Math.floor(u * size)), py = Math.min(size - 1, Math.floor(v * size));
+    return [px, py].concat(Array.from(ctx.getImageData(px, py, 1, 1).data));
+  });
+  canvas.dataset.samples = JSON.stringify(samples);
+  canvas.dataset.centre = samples[0].slice(2).join(",");
+}
+
+function metal(x) {
+  const row0 = rowAt(state.ill, 0, x);
+  const xyz = xyzAt(row0, Math.max(0, Math.cos(state.angle * Math.PI / 180)));
+  const lab = C.labFromXYZ(xyz, ILLS[state.ill].white);
+  const linear = C.linearSRGBFromXYZ(MATRIX, xyz);
+  const rgb8 = linear.map(C.srgb8);
+  const row = state.rough === 0 ? row0 : rowAt(state.ill, state.rough, x);
+  return { x, xyz, lab, linear, rgb8, hex: C.hex(rgb8), sigma: sigmaAt(state.ill, x, state.angle), row };
+}
+
+const fixed = (v, n) => (Math.abs(v) < 0.5 * Math.pow(10, -n) ? 0 : v).toFixed(n);
+function value(id, text, data) { return `<dd id="${id}" data-value="${data}">${text}</dd>`; }
+function fillCard(key, m) {
+  const clipped = m.linear.some((v) => v < 0 || v > 1);
+  const sigma = m.sigma === null ? "none" : m.sigma;
+  $("card-" + key).innerHTML =
+    `<div class="swatch" id="${key}-swatch" style="background:${m.hex}"></div>` +
+    `<div class="hexline"><div class="hex" id="${key}-hex" data-value="${m.hex}">${m.hex}</div>` +
+    `<div class="cond">${ILLS[state.ill].name}, ${D.observer}° observer, ${fixed(state.angle, 1)}° incidence, polished</div></div>` +
+    `<dl class="values">` +
+    `<dt>sRGB 8-bit</dt>` + value(key + "-srgb8", m.rgb8.join(", ") + (clipped ? " (clipped)" : ""), m.rgb8.join(",")) +
+    `<dt>linear sRGB</dt>` + value(key + "-linear", m.linear.map((v) => fixed(v, 4)).join("  "), m.linear.join(",")) +
+    `<dt>CIELAB</dt>` + value(key + "-lab", "L* " + fixed(m.lab[0], 2) + "  a* " + fixed(m.lab[1], 2) + "  b* " + fixed(m.lab[2], 2), m.lab.join(",")) +
+    `<dt>XYZ</dt>` + value(key + "-xyz", m.xyz.map((v) => fixed(v, 4)).join("  "), m.xyz.join(",")) +
+    `<dt>uncertainty</dt>` + value(key + "-sigma", m.sigma === null ? "none (the " + D.method + " model has no error bar)" : "ΔE00 " + fixed(m.sigma, 3) + " (one sigma)", sigma) +
+    `</dl>`;
+}
+
+function verdict(de) {
+  if (de < 0.5) return "the same colour to the eye";
+  if (de < 1) return "not distinguishable side by side";
+  if (de < 2) return "barely distinguishable side by side, by a trained eye";
+  if (de < 3.5) return "visible side by side";
+  if (de < 5) return "clearly different side by side";
+  return "different colours at a glance";
+}
+
+// ---- Plots.
+function niceTicks(lo, hi, count) {
+  const span = hi - lo || 1, raw = span / count, mag = Math.pow(10, Math.floor(Math.log10(raw)));
+  const step = [1, 2, 2.5, 5, 10].map((s) => s * mag).find((s) => span / s <= count) || 10 * mag;
+  const out = [];
+  for (let v = Math.ceil(lo / step) * step; v <= hi + 1e-9 * span; v += step) out.push(+v.toFixed(10));
+  return out;
+}
+function plot(svgId, label, key, curves) {
+  const svg = $(svgId), W = 340, H = 230, L = 44, R = 10, TOP = 14, B = 34;
+  const l0 = T.lambda_nm[0], l1 = T.lambda_nm[NL - 1];
+  let lo = Infinity, hi = -Infinity;
+  for (const c of curves) for (let i = 0; i < c.x.length; i++) {
+    if (c.x[i] < l0 || c.x[i] > l1) continue;
+    lo = Math.min(lo, c.y[i]); hi = Math.max(hi, c.y[i]);
+  }
+  if (key === "r") { lo = Math.min(lo, 0); hi = Math.min(1, Math.max(hi, 0.2)); }
+  else lo = Math.min(lo, 0);
+  const pad = 0.04 * (hi - lo || 1); hi += pad;
+  const sx = (l) => L + (l - l0) / (l1 - l0) * (W - L - R);
+  const sy = (v) => TOP + (hi - v) / (hi - lo) * (H - TOP - B);
+  let s = "";
+  for (const t of niceTicks(lo, hi, 5)) {
+    s += `<line class="grid" x1="${L}" x2="${W - R}" y1="${sy(t)}" y2="${sy(t)}"/><text x="${L - 5}" y="${sy(t) + 4}" text-anchor="end">${t}</text>`;
+  }
+  for (const t of niceTicks(l0, l1, 5)) {
+    s += `<line class="axis" x1="${sx(t)}" x2="${sx(t)}" y1="${H - B}" y2="${H - B + 4}"/><text x="${sx(t)}" y="${H - B + 16}" text-anchor="middle">${t}</text>`;
+  }
+  s += `<line class="axis" x1="${L}" x2="${W - R}" y1="${H - B}" y2="${H - B}"/>`;
+  s += `<text x="${(L + W - R) / 2}" y="${H - 4}" text-anchor="middle">wavelength (nm)</text>`;
+  s += `<text x="${L + 6}" y="${TOP + 10}" style="fill:#ebe8e1;font-size:13px;font-weight:600">${label}</text>`;
+  for (const c of curves) {
+    const pts = [];
+    for (let i = 0; i < c.x.length; i++) if (c.x[i] >= l0 && c.x[i] <= l1) pts.push(sx(c.x[i]).toFixed(1) + "," + sy(c.y[i]).toFixed(1));
+    s += `<polyline class="${c.cls}" points="${pts.join(" ")}"${c.color ? ` style="stroke:${c.color}"` : ""}><title>${c.title}</title></polyline>`;
+  }
+  svg.innerHTML = s;
+}
+function drawPlots(a, b) {
+  const sa = spectrumAt(a.x), sb = spectrumAt(b.x);
+  const labelA = "A " + describe(a.x).main, labelB = "B " + describe(b.x).main;
+  for (const [id, key, label] of [["plot-n", "n", "n"], ["plot-k", "k", "k"], ["plot-r", "r", "R at normal incidence"]]) {
+    const curves = D.samples.map((s) => ({ x: s.lambda_nm, y: s[key], cls: "sample" + (s.measured ? "" : " model"), title: s.label }));
+    curves.push({ x: T.lambda_nm, y: sb[key], cls: "curve b", color: b.hex, title: labelB });
+    curves.push({ x: T.lambda_nm, y: sa[key], cls: "curve", color: a.hex, title: labelA });
+    plot(id, label, key, curves);
+  }
+  const measured = D.samples.length && D.samples[0].measured;
+  $("legend").innerHTML = `<i style="border-color:${a.hex}"></i>${labelA}<i class="dash" style="border-color:${b.hex}"></i>${labelB}` +
+    `<i class="sample"></i>${measured ? "measured samples" : "the model at its training compositions"} (hover for names). ${D.samples_note}`;
+}
+
+// ---- The page.
+let pending = false;
+function render() {
+  pending = false;
+  writeHash();
+  const a = metal(state.x), b = metal(state.x2);
+  const studio = state.light === "studio";
+  for (const [key, m] of [["a", a], ["b", b]]) {
+    for (const shape of ["sphere", "ring"]) {
+      const tile = TILES[shape];
+      drawTile($(shape + "-" + key), tile, m.row, studio ? tileLight(tile, state.rough) : null);
+    }
+    $("stage-" + key).classList.toggle("uniform", !studio);
+    fillCard(key, m);
+    const d = describe(m.x);
+    $(key + "-readout").innerHTML = `<b>${d.main}</b> · ${d.rest}`;
+    const input = $("x-" + key), text = $("x-" + key + "-text");
+    if (Math.abs(parseFloat(input.value) - m.x) > 1e-12) input.value = m.x;
+    if (document.activeElement !== text) { text.value = d.main; text.classList.remove("bad"); }
+  }
+  const de = C.deltaE00(a.lab, b.lab);
+  $("de00").textContent = fixed(de, 2);
+  $("de00").dataset.value = de;
+  $("verdict").textContent = verdict(de);
+  $("pair-a").style.background = a.hex;
+  $("pair-b").style.background = b.hex;
+  $("difference-note").textContent = `CIEDE2000 between A and B, polished, ${ILLS[state.ill].name}, ${fixed(state.angle, 1)}° incidence. ` +
+    "Below 1: not distinguishable side by side; 1-2: a trained eye may see it; 2-3.5: visible; above 5: different colours.";
+  for (const btn of document.querySelectorAll("#ill-buttons button")) btn.setAttribute("aria-pressed", btn.dataset.ill == state.ill);
+  for (const btn of document.querySelectorAll("#light-buttons button")) btn.setAttribute("aria-pressed", btn.dataset.light === state.light);
+  for (const btn of document.querySelectorAll("#finish-buttons button")) btn.setAttribute("aria-pressed", btn.dataset.rough == state.rough);
+  if (document.activeElement !== $("angle-value")) $("angle-value").value = state.angle;
+  $("angle").value = state.angle;
+  drawPlots(a, b);
+  document.body.dataset.ready = "true";
+}
+function update() { if (!pending) { pending = true; requestAnimationFrame(render); } }
+
+function setup() {
+  const trainingNote = D.training.length + " training sample" + (D.training.length === 1 ? "" : "s");
+  $("model-line").textContent = `${D.method} model · ${trainingNote} · ${D.source} · ${D.observer}° observer · ${D.generator}`;
+  $("ill-buttons").innerHTML = ILLS.map((ill, i) => `<button type="button" data-ill="${i}">${ill.name}</button>`).join("");
+  $("finish-buttons").innerHTML = FINISHES.map((r, i) => `<button type="button" data-rough="${i}" title="GGX roughness ${r}">${D.finishes[i]}</button>`).join("");
+  for (const btn of document.querySelectorAll("#ill-buttons button")) btn.onclick = () => { state.ill = +btn.dataset.ill; update(); };
+  for (const btn of document.querySelectorAll("#light-buttons button")) btn.onclick = () => { state.light = btn.dataset.light; update(); };
+  for (const btn of document.querySelectorAll("#finish-buttons button")) btn.onclick = () => { state.rough = +btn.dataset.rough; update(); };
+  $("angle").oninput = () => { state.angle = Math.round(parseFloat($("angle").value) * 10) / 10; update(); };
+  $("angle-value").onchange = () => {
+    const v = parseFloat($("angle-value").value);
+    if (v >= 0 && v <= 90) { state.angle = v; update(); }
+  };
+  for (const [key, field] of [["a", "x"], ["b", "x2"]]) {
+    const input = $("x-" + key), text = $("x-" + key + "-text");
+    input.min = X_LO; input.max = X_HI;
+    input.oninput = () => { state[field] = parseFloat(input.value); update(); };
+    text.onchange = () => {
+      const v = parseComposition(text.value);
+      if (Number.isFinite(v) && inRange(v)) { state[field] = clampX(v); text.classList.remove("bad"); text.blur(); update(); }
+      else text.classList.add("bad");
+    };
+    $("ticks-" + key).innerHTML = D.training.map((s) => {
+      const f = (s.x - X_LO) / (X_HI - X_LO || 1);
+      return `<button type="button" class="tick" style="left:${(100 * f).toFixed(3)}%" data-x="${s.x}" title="measured: ${s.file}">${(100 * s.x).toFixed(0)}</button>`;
+    }).join("");
+    for (const tick of $("ticks-" + key).querySelectorAll(".tick")) tick.onclick = () => { state[field] = +tick.dataset.x; update(); };
+  }
+  const roughNote = FINISHES.length > 1
+    ? ` The finishes other than polished are GGX microfacet surfaces (roughness ${FINISHES.slice(1).join(", ")}), tabulated the same way; they change the pictures only.`
+    : "";
+  $("about").innerHTML =
+    `<p>Every number and pixel comes from tables the program <b>alloycolor ${D.generator.replace(/^alloycolor /, "")}</b> computed with the same spectral chain as <code>alloycolor color</code> and <code>alloycolor render</code>: n, k of the ${D.method} model → Fresnel reflectance at the angle of incidence (Rs + Rp)/2 → CIE XYZ under the illuminant (${D.observer}° observer) → CIELAB (the illuminant's white) and sRGB (IEC 61966-2-1, no chromatic adaptation). The page interpolates: <b>linearly in the cosine of the angle</b> (${M} nodes) and <b>cubically in composition</b> (${T.nodes} nodes, breaks at the measured compositions).</p>` +
+    `<p id="table-error" data-max-de00="${T.max_de00}" data-max-srgb8="${T.max_srgb8_difference}">How far off it can be: against direct spectral evaluation at ${T.check_points.toLocaleString("en")} check points (every node and midpoint in composition × every node and midpoint in angle, all illuminants), the largest error is <b>ΔE00 ${T.max_de00.toPrecision(2)}</b> and <b>${T.max_srgb8_difference} in 8-bit sRGB</b>. The one-sigma ΔE00 is interpolated linearly between nodes and between the angles ${SIGMA_ANGLES.join(", ")}°.</p>` +
+    `<p>Pictures: each pixel is the table's colour at that pixel's angle of incidence, as the renderer does; in <b>Uniform</b> light that is all (the sphere's centre is the colour at 0°, the rim goes toward white); in <b>Studio</b> light it is scaled by the brightness of the light tent in the mirror direction (for rough finishes, the tent blurred by the microfacet lobe).${roughNote} Outlines are anti-aliased with the renderer's 4 × 4 coverage.</p>` +
+    `<p>The address holds the view (x = atomic fraction of ${SYS.a}; 18k, 75wt% are accepted too): <code id="state-example"></code></p>`;
+  readHash();
+  window.addEventListener("hashchange", () => { if (location.hash.replace(/^#/, "") !== stateString()) { readHash(); render(); } });
+  render();
+  $("state-example").textContent = "#" + stateString();
+}
+setup();
+})();
+)JS";
+
+}  // namespace alloycolor::app

@@ -40,7 +40,11 @@ std::string ElementsLine(const AlloySystem& system) {
   std::ostringstream line;
   line << "N_e(x) = (x Z_a + (1-x) Z_b) N_A / (x M_a/rho_a + (1-x) M_b/rho_b) (ideal mixing); ";
   for (const Element* e : {&system.a, &system.b}) {
-    line << e->symbol << ": Z = " << e->valence << ", rho = " << e->density_g_cm3
+    line << e->symbol << ": Z = " << e->valence
+         << (e->valence_conventional ? " (conventional: no free-electron valence in Ashcroft & "
+                                       "Mermin Table 1.1; m* scales with it)"
+                                     : "")
+         << ", rho = " << e->density_g_cm3
          << " g/cm3, M = " << e->atomic_mass << " g/mol" << (e == &system.a ? "; " : "");
   }
   return line.str();

@@ -416,3 +416,24 @@ TEST(AuPdProgramTest, FitAndLeaveOneOutValidationRunOnAWhiteGoldDataSet) {
 
 }  // namespace
 }  // namespace alloycolor
+
+namespace alloycolor {
+namespace {
+
+// Pd has no free-electron valence in Ashcroft & Mermin's table: the m* read-out says its
+// valence is a convention; Au's is not flagged.
+TEST(ConventionalValence, FlaggedInTheParamsReadOut) {
+  const std::string dir = MakeTempDir();
+  const std::string au = DataDir() + "/Au-Ag/Rioux-Au100Ag0.yml";
+  const std::string ag = DataDir() + "/Au-Ag/Rioux-Au0Ag100.yml";
+  WriteText(dir + "/dataset.json",
+            R"({"system": {"a": "Au", "b": "Pd"}, "composition": "atomic_fraction_a",
+                "samples": [{"x": 0, "file": ")" + ag + R"("}, {"x": 1, "file": ")" + au + R"("}]})");
+  const auto r = RunProgram({"params", "--data", dir, "--method", "eps-linear", "--steps", "2"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("Pd: Z = 1 (conventional"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("Au: Z = 1 (conventional"), std::string::npos) << r.out;
+}
+
+}  // namespace
+}  // namespace alloycolor

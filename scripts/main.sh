@@ -34,7 +34,7 @@ echo "== Validation on the paper's split: train on Au 0, 20, 50, 60, 80, 100 %, 
 $ac validate --data Au-Ag --holdout 0.1,0.3,0.4,0.7,0.9 --methods paper,eps-linear,smooth,physical \
   --angles 0,45 --out out/report-paper-split
 
-echo "== Smooth fit to all 11 Au-Ag samples -> out/au-ag-all.json, and its composition chart"
+echo "== Fit to all 11 Au-Ag samples (method chosen by leave-one-out: auto) -> out/au-ag-all.json, and its composition chart"
 $ac fit --data Au-Ag --out out/au-ag-all.json --quiet
 $ac chart --model out/au-ag-all.json --from 0 --to 1 --steps 11 --out out/au-ag-chart.svg
 $ac chart --model out/au-ag-all.json --from 0 --to 1 --steps 11 --out out/au-ag-chart.png

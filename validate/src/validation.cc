@@ -14,26 +14,15 @@
 #include "alloycolor/core/spectrum.h"
 #include "alloycolor/core/units.h"
 #include "alloycolor/model/optics.h"
+#include "report_metrics.h"
 
 
 namespace alloycolor::validate {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kMetricStepNm = 5.0;
 constexpr double kSameX = 1e-9;
 
-std::string Num(double v, const char* format = "%g") {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, format, v);
-  return buf;
-}
-
-std::string XList(const std::vector<double>& xs) {
-  std::string s;
-  for (double x : xs) s += (s.empty() ? "" : ", ") + Num(x, "%.4g");
-  return s;
-}
 
 // ---------------------------------------------------------------------------------------
 // Computation.

@@ -159,10 +159,14 @@ void Run(const FitOptions& o) {
       std::fprintf(stderr, "alloycolor: auto chose %s\n", stats.selection.reason.c_str());
     }
     if (stats.present()) {
+      const std::string shape =
+          model->method() == "smooth"
+              ? "smoothing " + FormatNumber(stats.details.value("smoothing", 0.0))
+              : "degree " + std::to_string(stats.degree);
       std::fprintf(stderr,
-                   "alloycolor: %s fit: degree %d, final cost %.6g, %d iterations, %s, "
+                   "alloycolor: %s fit: %s, final cost %.6g, %d iterations, %s, "
                    "RMS relative eps error %.3g, %.3f s\n",
-                   model->method().c_str(), stats.degree, stats.final_cost, stats.iterations,
+                   model->method().c_str(), shape.c_str(), stats.final_cost, stats.iterations,
                    stats.converged ? "converged" : "NOT converged", stats.rms_relative_eps,
                    seconds);
     }
@@ -178,9 +182,10 @@ void RegisterFit(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "fit",
       "Fit a model to all samples of a data set and write it as a versioned JSON model "
-      "file (docs/model-format.md). smooth: Ceres fit of tau and m* as smooth functions of "
-      "composition at every wavelength, degree by leave-one-out cross-validation, with "
-      "covariance. physical: Ceres fit of a Drude + interband model (eps_inf, wp, gamma, "
+      "file (docs/model-format.md). smooth: Ceres fit, at every wavelength, of eps1 and eps2 "
+      "as monotone cubic (PCHIP) curves of composition through knots, a regression with "
+      "its smoothing chosen by leave-one-composition-out cross-validation (tau and m* "
+      "follow from eps). physical: Ceres fit of a Drude + interband model (eps_inf, wp, gamma, "
       "Lorentz / critical-point / Rioux terms) whose parameters are polynomials in "
       "composition, to all samples at once, with covariance. paper, eps-linear: the "
       "baselines (they keep the samples' data).");
@@ -198,7 +203,6 @@ void RegisterFit(CLI::App& app) {
   cmd->add_option("--from", o->from,
                   "Refit: start from this earlier model and report what changed");
   cmd->add_option("--degree", o->degree,
-                  "smooth: polynomial degree in composition (default: cross-validated); "
                   "physical: degree of every parameter's polynomial (default 2)")
       ->check(NumberIn(0, 20, /*whole=*/true));
   cmd->add_option("--terms", o->terms,
@@ -207,12 +211,12 @@ void RegisterFit(CLI::App& app) {
                   "term alone; auto: none for infrared data, else the best of "
                   "rioux-gap,rioux-edge / cp,cp / lorentz,lorentz,lorentz on the end samples")
       ->capture_default_str();
-  cmd->add_option("--max-degree", o->max_degree, "smooth: largest degree cross-validation tries")
+  cmd->add_option("--max-degree", o->max_degree, "physical: largest degree the data may choose")
       ->capture_default_str()
       ->check(NumberIn(0, 20, /*whole=*/true));
   cmd->add_option("--smoothing", o->smoothing,
-                  "smooth: weight of the curvature penalty across wavelength, 0 to 1e6 "
-                  "(default 1e-3)")
+                  "smooth: weight of the roughness penalty across composition, 0 (interpolate) "
+                  "to 1e6 (default: chosen by leave-one-composition-out cross-validation)")
       ->check(NumberIn(0, 1e6));
   cmd->add_option("--lambda-from", o->lambda_from,
                   "smooth, physical: first wavelength of the fit grid, nm (physical default: "

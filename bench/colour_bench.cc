@@ -29,6 +29,7 @@
 #include "alloycolor/color/colorimetry.h"
 #include "alloycolor/color/material_color.h"
 #include "alloycolor/color/sweep.h"
+#include "alloycolor/model/interpolation.h"
 
 namespace alloycolor {
 namespace {
@@ -42,8 +43,7 @@ struct Fixture {
   Fixture() {
     paper = std::make_unique<SampleModel>(SampleModel::Kind::kPaper, dataset);
     eps_linear = std::make_unique<SampleModel>(SampleModel::Kind::kEpsLinear, dataset);
-    fit::SmoothFitOptions options;  // the default fit: degree by cross-validation
-    options.covariance = false;
+    fit::SmoothFitOptions options;  // the default fit: smoothing by cross-validation
     smooth = std::move(fit::FitSmooth(dataset, options).model);
   }
   const AlloyModel& Model(int which) const {
@@ -91,28 +91,25 @@ color::XYZ NaiveXYZFromEps(const color::Colorimeter& colorimeter,
   return xyz;
 }
 
-// The smooth model evaluated sample by sample from its nodes, with std::complex.
+// The smooth model evaluated straightforwardly from its knots, with std::complex: at each
+// wavelength both neighbouring nodes' PCHIP curves (slopes recomputed) and the blend.
 std::vector<std::complex<double>> NaiveSmoothEps(const SmoothModel& model, double x,
                                                  const std::vector<double>& grid) {
-  const int nb = model.basis_size();
-  std::vector<double> p(nb);
-  LegendreBasis(model.BasisArgument(x), model.degree(), p.data());
   const std::vector<double>& nodes = model.grid_nm();
+  const std::vector<double>& knots = model.knots_x();
   std::vector<std::complex<double>> eps;
   for (double l : grid) {
     size_t hi = std::upper_bound(nodes.begin(), nodes.end(), l) - nodes.begin();
     hi = std::clamp<size_t>(hi, 1, nodes.size() - 1);
     const double t = (l - nodes[hi - 1]) / (nodes[hi] - nodes[hi - 1]);
-    double ln_gamma = 0, ln_wp2 = 0;
-    for (int d = 0; d < nb; ++d) {
-      const double a = model.coeffs()[hi - 1][d] * (1 - t) + model.coeffs()[hi][d] * t;
-      const double b = model.coeffs()[hi - 1][nb + d] * (1 - t) + model.coeffs()[hi][nb + d] * t;
-      ln_gamma += a * p[d];
-      ln_wp2 += b * p[d];
+    std::complex<double> e[2];
+    for (int side = 0; side < 2; ++side) {
+      const size_t j = hi - 1 + side;
+      const Interpolant e1(Interpolation::kPchip, knots, model.eps1()[j]);
+      const Interpolant e2(Interpolation::kPchip, knots, model.eps2()[j]);
+      e[side] = {e1(x), e2(x)};
     }
-    const double w = kHcEvNm / l;
-    const std::complex<double> i(0, 1);
-    eps.push_back(1.0 - std::exp(ln_wp2) / (w * (w + i * std::exp(ln_gamma))));
+    eps.push_back(e[0] * (1 - t) + e[1] * t);
   }
   return eps;
 }

@@ -39,8 +39,6 @@ struct Models {
     all.push_back(std::make_unique<SampleModel>(SampleModel::Kind::kPaper, dataset));
     all.push_back(std::make_unique<SampleModel>(SampleModel::Kind::kEpsLinear, dataset));
     fit::SmoothFitOptions options;
-    options.degree = 3;
-    options.covariance = false;
     all.push_back(std::move(fit::FitSmooth(dataset, options).model));
   }
 };
@@ -85,8 +83,6 @@ TEST(ColorSweep, FastPathsEqualTheScalarPathRelatively) {
     models.push_back(std::make_unique<SampleModel>(SampleModel::Kind::kPaper, dataset));
     models.push_back(std::make_unique<SampleModel>(SampleModel::Kind::kEpsLinear, dataset));
     fit::SmoothFitOptions smooth;
-    smooth.degree = 2;
-    smooth.covariance = false;
     models.push_back(std::move(fit::FitSmooth(dataset, smooth).model));
     fit::PhysicalFitOptions physical;
     models.push_back(std::move(fit::FitPhysical(dataset, physical).model));

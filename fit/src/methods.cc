@@ -21,15 +21,12 @@ std::unique_ptr<AlloyModel> BuildSampleModel(const Dataset& dataset, const FitSe
 
 std::unique_ptr<AlloyModel> BuildSmooth(const Dataset& dataset, const FitSettings& settings) {
   SmoothFitOptions options;
-  options.degree = settings.degree;
-  options.max_degree = settings.max_degree;
   if (settings.smoothing != -1) {
     if (!(std::isfinite(settings.smoothing) && settings.smoothing >= 0)) {
       throw Error("--smoothing: need a finite value >= 0");
     }
     options.smoothing = settings.smoothing;
   }
-  options.covariance = settings.covariance;
   options.progress = settings.progress;
   if (settings.lambda_from_nm != 0 || settings.lambda_to_nm != 0) {
     const double step = settings.lambda_step_nm > 0 ? settings.lambda_step_nm : 5.0;
@@ -46,7 +43,6 @@ std::unique_ptr<AlloyModel> BuildSmooth(const Dataset& dataset, const FitSetting
     }
     start = std::make_unique<SmoothModel>(settings.start->ToJson(), "the start model");
     options.start = start.get();
-    if (options.degree < 0) options.degree = start->degree();
     if (options.grid_nm.empty()) options.grid_nm = start->grid_nm();
   }
   return std::move(FitSmooth(dataset, options).model);

@@ -1,27 +1,97 @@
 #include "alloycolor/model/smooth_model.h"
 
-#include <Eigen/Dense>
 #include <algorithm>
-#include <random>
+#include <cmath>
 
 #include "alloycolor/core/error.h"
-#include "alloycolor/core/units.h"
+#include "alloycolor/core/io.h"
+#include "alloycolor/model/interpolation.h"
 
 namespace alloycolor {
 namespace {
 
-// Largest sum of |coefficients| of ln gamma or ln wp^2 at a node (see Validate).
-constexpr double kMaxLogSum = 100.0;
+// Weights of y_lo, d_lo, y_hi, d_hi in HermiteAt (interpolation.h) at composition x, and
+// the interval: computed once per composition by the bound model.
+struct HermiteWeights {
+  size_t lo, hi;
+  double w[4];
+};
+
+HermiteWeights WeightsAt(const std::vector<double>& knots, double x) {
+  const size_t n = knots.size();
+  if (x <= knots.front()) return {0, 0, {1.0, x - knots.front(), 0.0, 0.0}};
+  if (x >= knots.back()) return {n - 1, n - 1, {1.0, x - knots.back(), 0.0, 0.0}};
+  const size_t hi = std::upper_bound(knots.begin(), knots.end(), x) - knots.begin();
+  const size_t lo = hi - 1;
+  const double h = knots[hi] - knots[lo], t = (x - knots[lo]) / h;
+  const double t2 = t * t, t3 = t2 * t;
+  return {lo, hi, {2 * t3 - 3 * t2 + 1, (t3 - 2 * t2 + t) * h, -2 * t3 + 3 * t2, (t3 - t2) * h}};
+}
+
+// Node bracket of wavelength l on the grid (clamped to it) and the weight of the upper node.
+struct NodeBracket {
+  size_t lo, hi;
+  double t;
+};
+
+NodeBracket BracketOf(const std::vector<double>& grid, double l) {
+  l = std::clamp(l, grid.front(), grid.back());
+  size_t hi = std::upper_bound(grid.begin(), grid.end(), l) - grid.begin();
+  hi = std::clamp<size_t>(hi, 1, grid.size() - 1);
+  return {hi - 1, hi, (l - grid[hi - 1]) / (grid[hi] - grid[hi - 1])};
+}
+
+class BoundSmoothModel : public BoundModel {
+ public:
+  BoundSmoothModel(const SmoothModel& model, std::vector<double> lambda_nm,
+                   const std::vector<std::vector<double>>& slope1,
+                   const std::vector<std::vector<double>>& slope2)
+      : BoundModel(std::move(lambda_nm)), knots_(model.knots_x()) {
+    const size_t k = knots_.size(), m = this->lambda_nm().size();
+    // Per wavelength and knot: eps1, slope1, eps2, slope2, interpolated in wavelength as
+    // SmoothModel::Permittivity interpolates its results (the sum is linear in them).
+    data_.resize(m * k * 4);
+    for (size_t i = 0; i < m; ++i) {
+      const NodeBracket b = BracketOf(model.grid_nm(), this->lambda_nm()[i]);
+      const auto lerp = [&](const std::vector<std::vector<double>>& v, size_t c) {
+        return v[b.lo][c] + (v[b.hi][c] - v[b.lo][c]) * b.t;
+      };
+      for (size_t c = 0; c < k; ++c) {
+        double* d = &data_[(i * k + c) * 4];
+        d[0] = lerp(model.eps1(), c);
+        d[1] = lerp(slope1, c);
+        d[2] = lerp(model.eps2(), c);
+        d[3] = lerp(slope2, c);
+      }
+    }
+  }
+
+  void Permittivity(double x_atomic, Complex<double>* eps) const override {
+    const HermiteWeights hw = WeightsAt(knots_, x_atomic);
+    const size_t k = knots_.size(), m = lambda_nm().size();
+    for (size_t i = 0; i < m; ++i) {
+      const double* lo = &data_[(i * k + hw.lo) * 4];
+      const double* hi = &data_[(i * k + hw.hi) * 4];
+      eps[i] = {hw.w[0] * lo[0] + hw.w[1] * lo[1] + hw.w[2] * hi[0] + hw.w[3] * hi[1],
+                hw.w[0] * lo[2] + hw.w[1] * lo[3] + hw.w[2] * hi[2] + hw.w[3] * hi[3]};
+    }
+  }
+
+ private:
+  std::vector<double> knots_;
+  std::vector<double> data_;
+};
 
 }  // namespace
 
-SmoothModel::SmoothModel(const Dataset& dataset, std::vector<double> grid_nm, int degree,
-                         std::vector<std::vector<double>> coeffs,
-                         std::vector<std::vector<double>> covariance)
+SmoothModel::SmoothModel(const Dataset& dataset, std::vector<double> grid_nm,
+                         std::vector<double> knots_x, std::vector<std::vector<double>> eps1,
+                         std::vector<std::vector<double>> eps2, double smoothing)
     : grid_nm_(std::move(grid_nm)),
-      degree_(degree),
-      coeffs_(std::move(coeffs)),
-      covariance_(std::move(covariance)) {
+      knots_x_(std::move(knots_x)),
+      eps1_(std::move(eps1)),
+      eps2_(std::move(eps2)),
+      smoothing_(smoothing) {
   if (grid_nm_.size() < 2) throw Error("smooth model: the grid needs two wavelengths");
   SetCommon(dataset, grid_nm_.front(), grid_nm_.back());
   Validate(dataset.manifest_path);
@@ -30,233 +100,130 @@ SmoothModel::SmoothModel(const Dataset& dataset, std::vector<double> grid_nm, in
 SmoothModel::SmoothModel(const nlohmann::json& doc, const std::string& source) {
   ReadCommon(doc);
   const auto& p = doc.at("parameters");
+  if (p.is_object() && p.contains("coefficients") && !p.contains("knots_x")) {
+    throw Error(source +
+                ": parameters: a smooth model of the earlier form (Legendre polynomials of "
+                "ln gamma, ln wp^2), which this version no longer reads: refit it with "
+                "`alloycolor fit --method smooth`");
+  }
   const char* field = "";
   try {
-    field = "degree";
-    degree_ = p.at(field).get<int>();
     field = "lambda_nm";
     grid_nm_ = p.at(field).get<std::vector<double>>();
-    field = "coefficients";
-    coeffs_ = p.at(field).get<std::vector<std::vector<double>>>();
-    field = "covariance";
-    covariance_ = p.value(field, std::vector<std::vector<double>>{});
+    field = "knots_x";
+    knots_x_ = p.at(field).get<std::vector<double>>();
+    field = "eps1";
+    eps1_ = p.at(field).get<std::vector<std::vector<double>>>();
+    field = "eps2";
+    eps2_ = p.at(field).get<std::vector<std::vector<double>>>();
+    field = "smoothing";
+    smoothing_ = p.at(field).get<double>();
   } catch (const nlohmann::json::exception& e) {
     throw Error(source + ": parameters." + field + ": " + e.what());
   }
   Validate(source);
 }
 
-void SmoothModel::Validate(const std::string& source) const {
-  const std::string where = source + ": smooth model: ";
-  if (degree_ < 0 || degree_ > kSmoothMaxDegree) {
-    throw Error(where + "degree must lie in 0.." + std::to_string(kSmoothMaxDegree));
-  }
-  if (grid_nm_.size() < 2) throw Error(where + "lambda_nm needs two wavelengths");
+void SmoothModel::Validate(const std::string& source) {
+  const std::string where = source + ": smooth model: parameters.";
+  if (grid_nm_.size() < 2) throw Error(where + "lambda_nm: needs two wavelengths");
   for (size_t j = 0; j < grid_nm_.size(); ++j) {
     if (!std::isfinite(grid_nm_[j]) || grid_nm_[j] <= 0 ||
         (j > 0 && !(grid_nm_[j] > grid_nm_[j - 1]))) {
-      throw Error(where + "lambda_nm must be positive and increasing (entry " +
+      throw Error(where + "lambda_nm: must be positive and increasing (entry " +
                   std::to_string(j) + ")");
     }
   }
-  const size_t nc = 2 * static_cast<size_t>(basis_size());
-  if (coeffs_.size() != grid_nm_.size()) {
-    throw Error(where + "coefficients: one row per wavelength expected");
+  if (grid_nm_.front() < lambda_min_nm() || grid_nm_.back() > lambda_max_nm()) {
+    throw Error(where + "lambda_nm: runs outside the model's wavelength range");
   }
-  for (size_t j = 0; j < coeffs_.size(); ++j) {
-    if (coeffs_[j].size() != nc) {
-      throw Error(where + "coefficients[" + std::to_string(j) + "]: expected " +
-                  std::to_string(nc) + " values");
-    }
-    for (double c : coeffs_[j]) {
-      if (!std::isfinite(c) || std::abs(c) > 700) {
-        throw Error(where + "coefficients[" + std::to_string(j) + "]: value out of range");
-      }
-    }
-    // Inside the training range |P_d(u)| <= 1, so |ln gamma| and |ln wp^2| are at most
-    // the sums of |coefficients|; bounding those keeps gamma, wp^2, their products and eps
-    // finite (e^100 ~ 3e43).
-    for (size_t part = 0; part < 2; ++part) {
-      double sum = 0;
-      for (size_t d = 0; d < nc / 2; ++d) sum += std::abs(coeffs_[j][part * nc / 2 + d]);
-      if (sum > kMaxLogSum) {
-        throw Error(where + "coefficients[" + std::to_string(j) + "]: value out of range (" +
-                    (part == 0 ? "ln gamma" : "ln wp2") + " could exceed " +
-                    std::to_string(static_cast<int>(kMaxLogSum)) + ")");
-      }
+  const size_t k = knots_x_.size();
+  if (k < 2 || k > static_cast<size_t>(kSmoothMaxKnots)) {
+    throw Error(where + "knots_x: expected 2.." + std::to_string(kSmoothMaxKnots) + " knots");
+  }
+  for (size_t c = 0; c < k; ++c) {
+    if (!std::isfinite(knots_x_[c]) || (c > 0 && !(knots_x_[c] > knots_x_[c - 1])) ||
+        knots_x_[c] < x_min() || knots_x_[c] > x_max()) {
+      throw Error(where + "knots_x: must increase inside x_range (entry " + std::to_string(c) +
+                  ")");
     }
   }
-  if (!covariance_.empty()) {
-    if (covariance_.size() != grid_nm_.size()) {
-      throw Error(where + "covariance: one matrix per wavelength expected");
+  if (!(smoothing_ >= 0 && std::isfinite(smoothing_))) {
+    throw Error(where + "smoothing: must be finite and >= 0");
+  }
+  const auto check = [&](const std::vector<std::vector<double>>& v, const char* name,
+                         bool passive) {
+    if (v.size() != grid_nm_.size()) {
+      throw Error(where + name + ": one row per wavelength expected");
     }
-    for (size_t j = 0; j < covariance_.size(); ++j) {
-      if (covariance_[j].size() != nc * nc) {
-        throw Error(where + "covariance[" + std::to_string(j) + "]: expected " +
-                    std::to_string(nc * nc) + " values");
-      }
-      for (double c : covariance_[j]) {
-        if (!std::isfinite(c)) {
-          throw Error(where + "covariance[" + std::to_string(j) + "]: not finite");
+    for (size_t j = 0; j < v.size(); ++j) {
+      const std::string row = where + name + "[" + std::to_string(j) + "]: ";
+      if (v[j].size() != k) throw Error(row + "expected " + std::to_string(k) + " values");
+      for (double e : v[j]) {
+        // |eps| <= kMaxOpticalConstant^2 keeps n, k within what the readers accept.
+        if (!std::isfinite(e) || std::abs(e) > kMaxOpticalConstant * kMaxOpticalConstant) {
+          throw Error(row + "value out of range");
         }
+        if (passive && e < 0) throw Error(row + "eps2 < 0 (not passive)");
       }
     }
+  };
+  check(eps1_, "eps1", false);
+  check(eps2_, "eps2", true);
+  slope1_.assign(grid_nm_.size(), std::vector<double>(k));
+  slope2_.assign(grid_nm_.size(), std::vector<double>(k));
+  for (size_t j = 0; j < grid_nm_.size(); ++j) {
+    PchipSlopes(knots_x_.data(), eps1_[j].data(), k, slope1_[j].data());
+    PchipSlopes(knots_x_.data(), eps2_[j].data(), k, slope2_[j].data());
   }
-  if (!(x_max() > x_min())) throw Error(where + "x_range must not be empty");
 }
-
-namespace {
-
-class BoundSmoothModel : public BoundModel {
- public:
-  BoundSmoothModel(const SmoothModel& model, std::vector<double> lambda_nm)
-      : BoundModel(std::move(lambda_nm)), model_(model), nb_(model.basis_size()) {
-    const std::vector<double>& nodes = model.grid_nm();
-    const std::vector<std::vector<double>>& coeffs = model.coeffs();
-    const int nc = 2 * nb_;
-    const std::vector<double>& grid = this->lambda_nm();
-    coeffs_.resize(grid.size() * nc);
-    omega_ev_.resize(grid.size());
-    // Interpolated in wavelength exactly as SmoothModel::Permittivity does.
-    for (size_t i = 0; i < grid.size(); ++i) {
-      const double l = std::clamp(grid[i], nodes.front(), nodes.back());
-      size_t hi = std::upper_bound(nodes.begin(), nodes.end(), l) - nodes.begin();
-      hi = std::clamp<size_t>(hi, 1, nodes.size() - 1);
-      const size_t lo = hi - 1;
-      const double t = (l - nodes[lo]) / (nodes[hi] - nodes[lo]);
-      for (int d = 0; d < nc; ++d) {
-        const double c_lo = coeffs[lo][d], c_hi = coeffs[hi][d];
-        coeffs_[i * nc + d] = t == 0.0 ? c_lo : t == 1.0 ? c_hi : c_lo + (c_hi - c_lo) * t;
-      }
-      omega_ev_[i] = OmegaEvFromLambdaNm(grid[i]);
-    }
-  }
-
-  void Permittivity(double x_atomic, Complex<double>* eps) const override {
-    double basis[kSmoothMaxDegree + 1];
-    LegendreBasis(model_.BasisArgument(x_atomic), nb_ - 1, basis);
-    for (size_t i = 0; i < omega_ev_.size(); ++i) {
-      eps[i] = SmoothNodePermittivity(&coeffs_[i * 2 * nb_], basis, nb_, omega_ev_[i]);
-    }
-  }
-
- private:
-  const SmoothModel& model_;
-  int nb_;
-  std::vector<double> coeffs_;    // per wavelength, 2 nb
-  std::vector<double> omega_ev_;  // per wavelength
-};
-
-}  // namespace
 
 std::unique_ptr<BoundModel> SmoothModel::Bind(const std::vector<double>& lambda_nm) const {
   CheckLambda(lambda_nm);
-  return std::make_unique<BoundSmoothModel>(*this, lambda_nm);
+  return std::make_unique<BoundSmoothModel>(*this, lambda_nm, slope1_, slope2_);
 }
 
 std::vector<double> SmoothModel::FittedCoefficients() const {
   std::vector<double> all;
-  for (const auto& node : coeffs_) all.insert(all.end(), node.begin(), node.end());
+  for (size_t j = 0; j < grid_nm_.size(); ++j) {
+    all.insert(all.end(), eps1_[j].begin(), eps1_[j].end());
+    all.insert(all.end(), eps2_[j].begin(), eps2_[j].end());
+  }
   return all;
-}
-
-double SmoothModel::BasisArgument(double x_atomic) const {
-  return CompositionArgument(x_atomic, x_min(), x_max());
 }
 
 void SmoothModel::AddWarnings(const std::vector<std::string>& warnings) {
   for (const auto& w : warnings) AddWarning(w);
 }
 
-std::vector<std::complex<double>> SmoothModel::Evaluate(
-    double x_atomic, const std::vector<double>& lambda_nm,
-    const std::vector<std::vector<double>>& coeffs) const {
+std::vector<std::complex<double>> SmoothModel::Permittivity(
+    double x_atomic, const std::vector<double>& lambda_nm) const {
   CheckLambda(lambda_nm);
-  const int nb = basis_size();
-  double basis[kSmoothMaxDegree + 1];
-  LegendreBasis(BasisArgument(x_atomic), degree_, basis);
+  const size_t k = knots_x_.size();
+  const double* kx = knots_x_.data();
   std::vector<std::complex<double>> eps(lambda_nm.size());
-  std::vector<double> c(2 * nb);
   for (size_t i = 0; i < lambda_nm.size(); ++i) {
-    const double l = std::clamp(lambda_nm[i], grid_nm_.front(), grid_nm_.back());
-    size_t hi = std::upper_bound(grid_nm_.begin(), grid_nm_.end(), l) - grid_nm_.begin();
-    hi = std::clamp<size_t>(hi, 1, grid_nm_.size() - 1);
-    const size_t lo = hi - 1;
-    const double t = (l - grid_nm_[lo]) / (grid_nm_[hi] - grid_nm_[lo]);
-    const double* c_lo = coeffs[lo].data();
-    const double* c_hi = coeffs[hi].data();
-    const double* ci;
-    if (t == 0.0) {
-      ci = c_lo;
-    } else if (t == 1.0) {
-      ci = c_hi;
-    } else {
-      for (int d = 0; d < 2 * nb; ++d) c[d] = c_lo[d] + (c_hi[d] - c_lo[d]) * t;
-      ci = c.data();
-    }
-    const Complex<double> e =
-        SmoothNodePermittivity(ci, basis, nb, OmegaEvFromLambdaNm(lambda_nm[i]));
-    if (!std::isfinite(e.re) || !std::isfinite(e.im)) {  // only far outside the x range
-      throw Error("smooth model: eps is not finite at x = " + std::to_string(x_atomic) +
-                  ", " + std::to_string(lambda_nm[i]) + " nm (extrapolated too far from " +
-                  std::to_string(x_min()) + "-" + std::to_string(x_max()) + ")");
-    }
-    eps[i] = {e.re, e.im};
+    const NodeBracket b = BracketOf(grid_nm_, lambda_nm[i]);
+    const auto at = [&](size_t j) {
+      return std::complex<double>(HermiteAt(kx, eps1_[j].data(), slope1_[j].data(), k, x_atomic),
+                                  HermiteAt(kx, eps2_[j].data(), slope2_[j].data(), k, x_atomic));
+    };
+    const std::complex<double> lo = at(b.lo), hi = at(b.hi);
+    eps[i] = lo + (hi - lo) * b.t;
   }
   return eps;
 }
 
-std::vector<std::complex<double>> SmoothModel::Permittivity(
-    double x_atomic, const std::vector<double>& lambda_nm) const {
-  return Evaluate(x_atomic, lambda_nm, coeffs_);
-}
-
-std::vector<std::vector<std::complex<double>>> SmoothModel::PermittivityDraws(
-    double x_atomic, const std::vector<double>& lambda_nm, int count,
-    std::uint32_t seed) const {
-  if (covariance_.empty()) return {};
-  const int nc = 2 * basis_size();
-  // Square roots of the node covariances (eigen-decomposition, negative rounding clamped).
-  std::vector<Eigen::MatrixXd> roots;
-  for (const auto& cov : covariance_) {
-    // Cholesky factor; eigen-decomposition where the matrix is singular.
-    Eigen::Map<const Eigen::MatrixXd> c(cov.data(), nc, nc);
-    const Eigen::MatrixXd sym = 0.5 * (c + c.transpose());
-    Eigen::LLT<Eigen::MatrixXd> llt(sym);
-    if (llt.info() == Eigen::Success) {
-      roots.push_back(llt.matrixL());
-    } else {
-      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(sym);
-      roots.push_back(eig.eigenvectors() *
-                      eig.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal());
-    }
-  }
-  std::mt19937 rng(seed);
-  std::normal_distribution<double> normal;
-  std::vector<std::vector<std::complex<double>>> draws;
-  std::vector<std::vector<double>> coeffs = coeffs_;
-  Eigen::VectorXd z(nc);
-  for (int s = 0; s < count; ++s) {
-    // Independent draws per node, as the node covariances are estimated; fully correlated
-    // draws overstated the held-out colour error 10-50 times on Au-Ag.
-    for (size_t j = 0; j < coeffs.size(); ++j) {
-      for (int d = 0; d < nc; ++d) z[d] = normal(rng);
-      const Eigen::VectorXd delta = roots[j] * z;
-      for (int d = 0; d < nc; ++d) coeffs[j][d] = coeffs_[j][d] + delta[d];
-    }
-    draws.push_back(Evaluate(x_atomic, lambda_nm, coeffs));
-  }
-  return draws;
-}
-
 nlohmann::json SmoothModel::ParametersJson() const {
   nlohmann::json p;
-  p["basis"] = "legendre(u), u = 2 (x - x_range[0]) / (x_range[1] - x_range[0]) - 1";
-  p["layout"] = "per wavelength: ln(gamma_eV) coefficients d=0..degree, then ln(wp2_eV2)";
-  p["degree"] = degree_;
+  p["basis"] =
+      "per wavelength node, eps1 and eps2 each the PCHIP (Fritsch-Butland) curve through "
+      "their values at knots_x; linear in wavelength between nodes";
   p["lambda_nm"] = grid_nm_;
-  p["coefficients"] = coeffs_;
-  if (!covariance_.empty()) p["covariance"] = covariance_;
+  p["knots_x"] = knots_x_;
+  p["eps1"] = eps1_;
+  p["eps2"] = eps2_;
+  p["smoothing"] = smoothing_;
   return p;
 }
 

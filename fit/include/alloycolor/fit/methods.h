@@ -20,9 +20,9 @@
 namespace alloycolor::fit {
 
 struct FitSettings {
-  int degree = -1;      // composition degree; < 0: the method's default or chosen from data
-  int max_degree = 6;   // smooth: the largest degree cross-validation tries
-  double smoothing = -1;  // smooth: curvature penalty across wavelength; -1: default
+  int degree = -1;      // physical: composition degree; < 0: the method's default
+  int max_degree = 6;   // physical: the largest degree the data may choose
+  double smoothing = -1;  // smooth: roughness penalty across composition; -1: cross-validated
   std::string terms = "auto";  // physical: interband terms
   // Fit grid: both 0 for the method's default range; step 0 for its default step.
   double lambda_from_nm = 0, lambda_to_nm = 0, lambda_step_nm = 0;

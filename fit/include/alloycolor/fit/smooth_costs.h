@@ -1,72 +1,80 @@
 // Cost functors of the smooth fit (smooth_fit.h), templated so Ceres differentiates the
-// same physics (model/smooth_model.h, model/optics.h) that the model evaluates.
+// same interpolation (model/interpolation.h) that the model evaluates.
 #ifndef ALLOYCOLOR_FIT_SMOOTH_COSTS_H_
 #define ALLOYCOLOR_FIT_SMOOTH_COSTS_H_
 
 #include <ceres/ceres.h>
 
-#include <algorithm>
 #include <complex>
+#include <vector>
 
+#include "alloycolor/model/interpolation.h"
 #include "alloycolor/model/smooth_model.h"
 
 namespace alloycolor::fit {
 
-// Relative misfit of the model's eps at one sample and node (see smooth_fit.h).
-template <int kNb>
-struct EpsResidual {
-  EpsResidual(const double* basis, double omega_ev, std::complex<double> eps)
-      : omega_ev(omega_ev), eps1(eps.real()), eps2(eps.imag()), inv_abs(1.0 / std::abs(eps)) {
-    std::copy(basis, basis + kNb, this->basis);
-  }
+// Stride of the dynamic cost functions: derivatives computed this many at a time.
+inline constexpr int kSmoothStride = 8;
+
+// Relative misfit of the model's eps at one sample and node: parameter blocks are the
+// node's eps1 and eps2 at the knots; residuals (eps - eps_i) / |eps_i|, real and imaginary.
+struct SmoothDataResidual {
+  SmoothDataResidual(const std::vector<double>& knots, double x, std::complex<double> eps)
+      : knots(knots), x(x), eps1(eps.real()), eps2(eps.imag()), inv_abs(1.0 / std::abs(eps)) {}
   template <typename T>
-  bool operator()(const T* const coeffs, T* residual) const {
-    const Complex<T> e = SmoothNodePermittivity(coeffs, basis, kNb, omega_ev);
-    residual[0] = (e.re - T(eps1)) * T(inv_abs);
-    residual[1] = (e.im - T(eps2)) * T(inv_abs);
+  bool operator()(T const* const* blocks, T* residual) const {
+    const size_t k = knots.size();
+    T slopes[kSmoothMaxKnots];
+    PchipSlopes(knots.data(), blocks[0], k, slopes);
+    residual[0] = (HermiteAt(knots.data(), blocks[0], slopes, k, x) - T(eps1)) * T(inv_abs);
+    PchipSlopes(knots.data(), blocks[1], k, slopes);
+    residual[1] = (HermiteAt(knots.data(), blocks[1], slopes, k, x) - T(eps2)) * T(inv_abs);
     return true;
   }
-  static ceres::CostFunction* Create(const double* basis, double omega_ev,
+  static ceres::CostFunction* Create(const std::vector<double>& knots, double x,
                                      std::complex<double> eps) {
-    return new ceres::AutoDiffCostFunction<EpsResidual, 2, 2 * kNb>(
-        new EpsResidual(basis, omega_ev, eps));
+    auto* cost = new ceres::DynamicAutoDiffCostFunction<SmoothDataResidual, kSmoothStride>(
+        new SmoothDataResidual(knots, x, eps));
+    cost->AddParameterBlock(static_cast<int>(knots.size()));
+    cost->AddParameterBlock(static_cast<int>(knots.size()));
+    cost->SetNumResiduals(2);
+    return cost;
   }
-  double basis[kNb];
-  const double omega_ev, eps1, eps2, inv_abs;
+  const std::vector<double> knots;
+  const double x, eps1, eps2, inv_abs;
 };
 
-// Second difference of every coefficient across three neighbouring nodes.
-template <int kNb>
-struct CurvatureResidual {
-  explicit CurvatureResidual(double weight) : weight(weight) {}
+// Roughness of one node's curves: sqrt(weight) times the second divided difference at
+// each inner knot, times sqrt of its share (h0 + h1) / 2 of the composition axis, so the
+// sum of squares approximates weight * integral of (d^2 eps / du^2)^2 du over u = x scaled
+// to [0, 1] on the training range. Linear in the knot values.
+struct SmoothRoughnessResidual {
+  SmoothRoughnessResidual(const std::vector<double>& knots_u, double weight)
+      : knots_u(knots_u), weight(weight) {}
   template <typename T>
-  bool operator()(const T* const a, const T* const b, const T* const c, T* residual) const {
-    for (int d = 0; d < 2 * kNb; ++d) residual[d] = T(weight) * (a[d] - T(2) * b[d] + c[d]);
-    return true;
-  }
-  static ceres::CostFunction* Create(double weight) {
-    return new ceres::AutoDiffCostFunction<CurvatureResidual, 2 * kNb, 2 * kNb, 2 * kNb,
-                                           2 * kNb>(new CurvatureResidual(weight));
-  }
-  const double weight;
-};
-
-// Pulls the composition-dependent coefficients (d >= 1) weakly toward zero.
-template <int kNb>
-struct RidgeResidual {
-  explicit RidgeResidual(double weight) : weight(weight) {}
-  template <typename T>
-  bool operator()(const T* const c, T* residual) const {
-    for (int d = 1; d < kNb; ++d) {
-      residual[2 * (d - 1)] = T(weight) * c[d];
-      residual[2 * (d - 1) + 1] = T(weight) * c[kNb + d];
+  bool operator()(T const* const* blocks, T* residual) const {
+    const size_t k = knots_u.size();
+    for (int part = 0; part < 2; ++part) {
+      const T* y = blocks[part];
+      for (size_t c = 1; c + 1 < k; ++c) {
+        const double h0 = knots_u[c] - knots_u[c - 1], h1 = knots_u[c + 1] - knots_u[c];
+        const double scale = weight * 2.0 / (h0 + h1) * std::sqrt(0.5 * (h0 + h1));
+        residual[part * (k - 2) + c - 1] =
+            T(scale) * ((y[c + 1] - y[c]) / T(h1) - (y[c] - y[c - 1]) / T(h0));
+      }
     }
     return true;
   }
-  static ceres::CostFunction* Create(double weight) {
-    return new ceres::AutoDiffCostFunction<RidgeResidual, 2 * (kNb - 1), 2 * kNb>(
-        new RidgeResidual(weight));
+  static ceres::CostFunction* Create(const std::vector<double>& knots_u, double weight) {
+    auto* cost =
+        new ceres::DynamicAutoDiffCostFunction<SmoothRoughnessResidual, kSmoothStride>(
+            new SmoothRoughnessResidual(knots_u, weight));
+    cost->AddParameterBlock(static_cast<int>(knots_u.size()));
+    cost->AddParameterBlock(static_cast<int>(knots_u.size()));
+    cost->SetNumResiduals(2 * (static_cast<int>(knots_u.size()) - 2));
+    return cost;
   }
+  const std::vector<double> knots_u;
   const double weight;
 };
 

@@ -44,7 +44,7 @@
 
 #include "alloycolor/model/alloy_model.h"
 #include "alloycolor/model/optics.h"
-#include "alloycolor/model/smooth_model.h"
+#include "alloycolor/model/legendre.h"
 
 namespace alloycolor {
 

@@ -191,13 +191,17 @@ TEST_F(BadInput, ModelFilesAndRefit) {
   ExpectCleanError({"predict", "--model", File("v7.json", doc.dump()), "--x", "0.5"},
                    {"v7.json", "version"});
   doc = nlohmann::json::parse(text);
-  doc["parameters"].erase("coefficients");
-  ExpectCleanError({"predict", "--model", File("nocoef.json", doc.dump()), "--x", "0.5"},
-                   {"nocoef.json", "coefficients"});
+  doc.erase("parameters");
+  ExpectCleanError({"predict", "--model", File("noparams.json", doc.dump()), "--x", "0.5"},
+                   {"noparams.json", "parameters"});
   doc = nlohmann::json::parse(text);
-  doc["parameters"]["degree"] = "two";
+  doc["x_range"] = "two";
   ExpectCleanError({"predict", "--model", File("type.json", doc.dump()), "--x", "0.5"},
-                   {"type.json", "degree"});
+                   {"type.json", "x_range"});
+  doc = nlohmann::json::parse(text);
+  doc["uncertainty"]["calibration"] = -1;
+  ExpectCleanError({"predict", "--model", File("calibration.json", doc.dump()), "--x", "0.5"},
+                   {"calibration.json", "uncertainty.calibration"});
   // Refit: reports the added samples, keeps the old model.
   r = RunProgram({"fit", "--data", "Au-Ag", "--from", model, "--out", dir_ + "/new.json"});
   ASSERT_EQ(r.status, 0) << r.err;

@@ -307,7 +307,9 @@ class ExplorePages : public ::testing::Test {
       if (sigma) {
         const double s = std::stod(Value(dom, key + "-sigma"));
         const double expected_sigma = c["delta_e00_sigma"];
-        EXPECT_NEAR(s, expected_sigma, 0.15 * expected_sigma) << hash << " " << key;
+        // The page interpolates sigma between its table's compositions, and sigma is
+        // concave between training compositions (PredictionError::Bump): within 25 %.
+        EXPECT_NEAR(s, expected_sigma, 0.25 * expected_sigma) << hash << " " << key;
       } else {
         EXPECT_EQ(Value(dom, key + "-sigma"), "none");
         EXPECT_FALSE(c.contains("delta_e00_sigma"));
@@ -392,9 +394,9 @@ TEST_F(ExplorePages, PaperPageShowsWhatColorAndRenderGive) {
   const std::string page = *dir_ + "/paper.html";
   const std::vector<std::string> source = {"--data", DataDir() + "/Au-Ag", "--method", "paper"};
   // Training compositions, karats between them, three illuminants, several angles.
-  CheckAddress(page, source, "0.75", "0.55", "D65", 0.0, false);
-  CheckAddress(page, source, "18k", "14k", "A", 45.0, false);
-  CheckAddress(page, source, "0.3333", "0.9137", "D50", 72.5, false);
+  CheckAddress(page, source, "0.75", "0.55", "D65", 0.0, true);
+  CheckAddress(page, source, "18k", "14k", "A", 45.0, true);
+  CheckAddress(page, source, "0.3333", "0.9137", "D50", 72.5, true);
 }
 
 TEST_F(ExplorePages, SmoothPageShowsWhatColorAndRenderGiveWithUncertainty) {

@@ -5,6 +5,11 @@
 #include <cstdio>
 
 #include "alloycolor/core/error.h"
+#include "alloycolor/color/colorimetry.h"
+#include "alloycolor/color/material_color.h"
+#include "alloycolor/core/text.h"
+#include "alloycolor/core/io.h"
+#include "alloycolor/core/grid.h"
 #include "alloycolor/fit/physical_fit.h"
 #include "alloycolor/fit/smooth_fit.h"
 #include "alloycolor/model/registry.h"
@@ -82,12 +87,137 @@ const std::vector<MethodBuilder>& Builders() {
   return kBuilders;
 }
 
+namespace {
+
+// The compositions held out to estimate the prediction error: the interior ones, 20 at
+// most, spread by rank.
+std::vector<double> ErrorFolds(const Dataset& dataset) {
+  std::vector<double> xs;
+  for (const Sample& s : dataset.samples) xs.push_back(s.x_atomic);
+  std::sort(xs.begin(), xs.end());
+  xs.erase(std::unique(xs.begin(), xs.end()), xs.end());
+  if (xs.size() < 3) return {};
+  std::vector<double> interior(xs.begin() + 1, xs.end() - 1);
+  constexpr size_t kMaxFolds = 20;
+  if (interior.size() <= kMaxFolds) return interior;
+  std::vector<double> folds;
+  for (size_t f = 0; f < kMaxFolds; ++f) {
+    folds.push_back(interior[f * (interior.size() - 1) / (kMaxFolds - 1)]);
+  }
+  return folds;
+}
+
+std::vector<double> DistinctCompositions(const Dataset& dataset) {
+  std::vector<double> xs;
+  for (const Sample& s : dataset.samples) xs.push_back(s.x_atomic);
+  std::sort(xs.begin(), xs.end());
+  xs.erase(std::unique(xs.begin(), xs.end()), xs.end());
+  return xs;
+}
+
+void EstimatePredictionError(const std::string& method, const Dataset& dataset,
+                             const FitSettings& settings, AlloyModel* model) {
+  const std::vector<double> folds = ErrorFolds(dataset);
+  if (folds.empty()) return;
+  FitSettings inner = settings;
+  inner.calibrate = false;
+  inner.progress = {};
+  inner.start = nullptr;
+  const double lo = model->lambda_min_nm(), hi = model->lambda_max_nm();
+  std::vector<double> grid;
+  for (int j = 0; j <= 80; ++j) grid.push_back(lo + (hi - lo) * j / 80.0);
+  struct Fold {
+    std::unique_ptr<AlloyModel> model;
+    std::vector<const Sample*> held;
+    std::vector<double> compositions;  // of the fold's training samples
+    double bump = 0;                   // B(x) of the held-out composition, reference gap 1
+  };
+  std::vector<Fold> done;
+  double gap_sum = 0;
+  for (double x : folds) {
+    Fold f;
+    const Dataset training = WithoutSamples(dataset, {x});
+    try {
+      f.model = BuildModel(method, training, inner);
+    } catch (const Error&) {
+      continue;  // a fold the method cannot fit says nothing about the error
+    }
+    for (const Sample& s : dataset.samples) {
+      if (s.x_atomic == x) f.held.push_back(&s);
+    }
+    f.compositions = DistinctCompositions(training);
+    PredictionError unit;
+    unit.compositions = f.compositions;
+    f.bump = unit.Bump(x);
+    const size_t i = std::upper_bound(f.compositions.begin(), f.compositions.end(), x) -
+                     f.compositions.begin();
+    gap_sum += f.compositions[i] - f.compositions[i - 1];
+    done.push_back(std::move(f));
+  }
+  if (done.empty()) return;
+  const double reference_gap = gap_sum / done.size();
+  // scale[j]^2: mean over folds of (relative error / B)^2, B with the reference gap.
+  std::vector<double> sum_sq(grid.size(), 0.0);
+  int count = 0;
+  for (const Fold& f : done) {
+    const double bump = f.bump / (reference_gap * reference_gap);
+    if (!(bump > 0)) continue;
+    const auto predicted = f.model->Permittivity(f.held.front()->x_atomic, grid);
+    for (const Sample* s : f.held) {
+      for (size_t j = 0; j < grid.size(); ++j) {
+        const std::complex<double> nk = NkAt(s->nk, grid[j]), e = nk * nk;
+        const double r = std::abs(predicted[j] - e) / std::abs(e);
+        if (std::isfinite(r)) sum_sq[j] += std::pow(r / bump, 2);
+      }
+      ++count;
+    }
+  }
+  if (count == 0) return;
+  PredictionError error;
+  error.lambda_nm = grid;
+  for (double v : sum_sq) error.scale.push_back(std::min(std::sqrt(v / count), 100.0));
+  error.compositions = DistinctCompositions(dataset);
+  error.reference_gap = reference_gap;
+  error.folds = static_cast<int>(done.size());
+  // Calibration on colour: RMS over folds of observed / predicted one-sigma CIEDE2000.
+  if (settings.colorimeter != nullptr && CoversVisible(lo, hi)) {
+    const color::Colorimeter& cm = *settings.colorimeter;
+    double ratio_sq = 0;
+    int ratios = 0;
+    for (Fold& f : done) {
+      PredictionError fold_error = error;
+      fold_error.compositions = f.compositions;
+      f.model->set_prediction_error(fold_error);
+      const double x = f.held.front()->x_atomic;
+      const double sigma = color::DeltaE00Sigma(cm, *f.model, x, 0.0);
+      if (!(sigma > 0) || !std::isfinite(sigma)) continue;
+      const color::Lab predicted = color::LabFromXYZ(
+          color::MaterialXYZ(cm, color::IndexOnGrid(cm, *f.model, x), 0.0), cm.White());
+      for (const Sample* s : f.held) {
+        const color::Lab truth = color::LabFromXYZ(
+            color::MaterialXYZ(cm, color::IndexOnGrid(cm, s->nk), 0.0), cm.White());
+        ratio_sq += std::pow(color::DeltaE00(truth, predicted) / sigma, 2);
+        ++ratios;
+      }
+    }
+    if (ratios > 0 && ratio_sq > 0) {
+      error.calibration = std::clamp(std::sqrt(ratio_sq / ratios), 1e-3, 1e3);
+    }
+  }
+  model->set_prediction_error(std::move(error));
+}
+
+}  // namespace
+
 std::unique_ptr<AlloyModel> BuildModel(const std::string& method, const Dataset& dataset,
                                        const FitSettings& settings) {
   if (method == kAutoMethod) return BuildAuto(dataset, settings);
   RequireMethod(method);
   for (const MethodBuilder& b : Builders()) {
-    if (b.name == method) return b.build(dataset, settings);
+    if (b.name != method) continue;
+    std::unique_ptr<AlloyModel> model = b.build(dataset, settings);
+    if (settings.calibrate) EstimatePredictionError(method, dataset, settings, model.get());
+    return model;
   }
   throw Error("method '" + method + "' cannot be fitted to data");
 }
@@ -114,6 +244,7 @@ std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings&
     FitSettings inner = settings;
     inner.progress = {};
     inner.start = nullptr;
+    inner.calibrate = false;
     validate::ValidationOptions options;
     options.build = [&inner](const std::string& method, const Dataset& training) {
       return BuildModel(method, training, inner);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <random>
 #include <sstream>
 
 #include "alloycolor/core/error.h"
@@ -52,9 +53,72 @@ std::unique_ptr<BoundModel> AlloyModel::Bind(const std::vector<double>& lambda_n
   return std::make_unique<GenericBoundModel>(*this, lambda_nm);
 }
 
+double PredictionError::Bump(double x) const {
+  const size_t n = compositions.size();
+  size_t hi = std::upper_bound(compositions.begin(), compositions.end(), x) - compositions.begin();
+  hi = std::clamp<size_t>(hi, 1, n - 1);
+  const double h = compositions[hi] - compositions[hi - 1];
+  const double t = (x - compositions[hi - 1]) / h;
+  const double g = h / reference_gap;
+  return 4 * std::abs(t * (1 - t)) * g * g;
+}
+
+double PredictionError::ScaleAt(double l) const {
+  if (l <= lambda_nm.front()) return scale.front();
+  if (l >= lambda_nm.back()) return scale.back();
+  const size_t hi = std::upper_bound(lambda_nm.begin(), lambda_nm.end(), l) - lambda_nm.begin();
+  const double t = (l - lambda_nm[hi - 1]) / (lambda_nm[hi] - lambda_nm[hi - 1]);
+  return scale[hi - 1] + (scale[hi] - scale[hi - 1]) * t;
+}
+
+void AlloyModel::set_prediction_error(PredictionError e) {
+  const std::string where = "uncertainty.";
+  if (e.lambda_nm.size() < 2 || e.scale.size() != e.lambda_nm.size()) {
+    throw Error(where + "scale: one value per wavelength of lambda_nm, two at least");
+  }
+  for (size_t j = 0; j < e.lambda_nm.size(); ++j) {
+    if (!std::isfinite(e.lambda_nm[j]) || (j > 0 && !(e.lambda_nm[j] > e.lambda_nm[j - 1]))) {
+      throw Error(where + "lambda_nm: must increase");
+    }
+    // A relative error of 100 between samples already says "no idea"; more overflows.
+    if (!(e.scale[j] >= 0 && e.scale[j] <= 100)) throw Error(where + "scale: must lie in 0..100");
+  }
+  if (e.compositions.size() < 2) throw Error(where + "compositions: two at least");
+  for (size_t i = 0; i < e.compositions.size(); ++i) {
+    if (!std::isfinite(e.compositions[i]) ||
+        (i > 0 && !(e.compositions[i] > e.compositions[i - 1]))) {
+      throw Error(where + "compositions: must increase");
+    }
+  }
+  if (!(e.reference_gap > 0 && e.reference_gap <= 1e6)) {
+    throw Error(where + "reference_gap: must be positive");
+  }
+  if (!(e.calibration > 0 && e.calibration <= 1e3)) {
+    throw Error(where + "calibration: must lie in (0, 1000]");
+  }
+  prediction_error_ = std::move(e);
+}
+
 std::vector<std::vector<std::complex<double>>> AlloyModel::PermittivityDraws(
-    double, const std::vector<double>&, int, std::uint32_t) const {
-  return {};
+    double x_atomic, const std::vector<double>& lambda_nm, int count, std::uint32_t seed) const {
+  if (!prediction_error_.present()) return {};
+  const PredictionError& e = prediction_error_;
+  const std::vector<std::complex<double>> centre = Permittivity(x_atomic, lambda_nm);
+  const double amplitude = e.calibration * e.Bump(x_atomic) / std::sqrt(2.0);
+  std::vector<double> scale(lambda_nm.size());
+  for (size_t i = 0; i < lambda_nm.size(); ++i) scale[i] = amplitude * e.ScaleAt(lambda_nm[i]);
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> normal;
+  std::vector<std::vector<std::complex<double>>> draws(count, centre);
+  for (int d = 0; d < count; ++d) {
+    const std::complex<double> z(normal(rng), normal(rng));
+    for (size_t i = 0; i < centre.size(); ++i) {
+      std::complex<double> v = centre[i] + scale[i] * std::abs(centre[i]) * z;
+      if (v.imag() < 0) v.imag(0.0);  // a draw stays passive
+      draws[d][i] = v;
+    }
+  }
+  return draws;
 }
 
 bool AlloyModel::DrudeAt(double x_atomic, double lambda_nm, DrudePoint* out) const {
@@ -79,7 +143,7 @@ ParameterTable AlloyModel::Parameters(const std::vector<double>& xs) const {
   table.notes = {"tau = hbar / gamma and m*/m_e = e^2 hbar^2 N_e / (eps0 m_e (hbar wp)^2) from "
                  "the pointwise Drude inversion of the " + method() + " model (eq. 11, 12)" +
                  (HasUncertainty() ? "; sigma from " + std::to_string(kDraws) +
-                                         " draws of the fit's covariance"
+                                         " draws of the model's uncertainty"
                                    : "")};
   table.columns = {"N_e_m^-3"};
   for (double l : lambda) {
@@ -201,6 +265,18 @@ nlohmann::json AlloyModel::ToJson() const {
                         {"scores", scores}};
   }
   doc["fit"] = fit;
+  if (prediction_error_.present()) {
+    const PredictionError& e = prediction_error_;
+    doc["uncertainty"] = {
+        {"estimated_by", "leave-one-composition-out over " + std::to_string(e.folds) +
+                             " folds (relative eps error scale * B(x); docs/model-format.md)"},
+        {"folds", e.folds},
+        {"lambda_nm", e.lambda_nm},
+        {"scale", e.scale},
+        {"compositions", e.compositions},
+        {"reference_gap", e.reference_gap},
+        {"calibration", e.calibration}};
+  }
   doc["warnings"] = warnings_;
   return doc;
 }
@@ -266,6 +342,32 @@ void AlloyModel::ReadCommon(const nlohmann::json& doc) {
                          Number(Field(ts[i], "x_given", where), where + ".x_given"),
                          String(Field(ts[i], "file", where), where + ".file"),
                          String(Field(ts[i], "checksum", where), where + ".checksum")});
+  }
+  prediction_error_ = PredictionError{};
+  if (doc.contains("uncertainty")) {
+    const nlohmann::json& u = doc.at("uncertainty");
+    if (!u.is_object()) throw Error("uncertainty: expected an object");
+    PredictionError e;
+    const auto numbers = [&](const char* key) {
+      const nlohmann::json& a = Field(u, key, "uncertainty");
+      if (!a.is_array()) throw Error(std::string("uncertainty.") + key + ": expected an array");
+      std::vector<double> v;
+      for (size_t i = 0; i < a.size(); ++i) {
+        v.push_back(Number(a[i], std::string("uncertainty.") + key + "[" + std::to_string(i) + "]"));
+      }
+      return v;
+    };
+    e.lambda_nm = numbers("lambda_nm");
+    e.scale = numbers("scale");
+    e.compositions = numbers("compositions");
+    e.reference_gap = Number(Field(u, "reference_gap", "uncertainty"), "uncertainty.reference_gap");
+    e.calibration = Number(Field(u, "calibration", "uncertainty"), "uncertainty.calibration");
+    const double folds = Number(Field(u, "folds", "uncertainty"), "uncertainty.folds");
+    if (folds != std::floor(folds) || folds < 1 || folds > 1e6) {
+      throw Error("uncertainty.folds: expected a whole number >= 1");
+    }
+    e.folds = static_cast<int>(folds);
+    set_prediction_error(std::move(e));
   }
   fit_summary_ = FitSummary{};
   if (doc.contains("fit")) {

@@ -298,6 +298,9 @@ std::vector<std::complex<double>> PhysicalModel::Permittivity(
 
 std::vector<std::vector<std::complex<double>>> PhysicalModel::PermittivityDraws(
     double x_atomic, const std::vector<double>& lambda_nm, int count, std::uint32_t seed) const {
+  if (prediction_error().present()) {
+    return AlloyModel::PermittivityDraws(x_atomic, lambda_nm, count, seed);
+  }
   if (covariance_.empty()) return {};
   const int nc = layout_.num_coefficients();
   Eigen::Map<const Eigen::MatrixXd> c(covariance_.data(), nc, nc);

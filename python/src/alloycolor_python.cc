@@ -348,6 +348,8 @@ PYBIND11_MODULE(_alloycolor, m) {
           settings.lambda_step_nm = lambda_step_nm;
           settings.covariance = covariance;
           settings.progress = PythonProgress(progress);
+          // As `alloycolor fit`: auto and the sigma calibration score colour under D65, 2 degrees.
+          settings.colorimeter = &GetColorimeter("D65", 2);
           std::unique_ptr<AlloyModel> model;
           {
             py::gil_scoped_release release;
@@ -430,8 +432,12 @@ PYBIND11_MODULE(_alloycolor, m) {
               throw Error("angles_deg: " + std::to_string(a) + " lies outside 0-90 degrees");
           }
           validate::ValidationOptions options;
-          options.build = [](const std::string& method, const Dataset& training) {
-            return fit::BuildModel(method, training);
+          // As `alloycolor validate`: fits score colour under D65, 2 degrees.
+          const color::Colorimeter& d65 = GetColorimeter("D65", 2);
+          options.build = [&d65](const std::string& method, const Dataset& training) {
+            fit::FitSettings settings;
+            settings.colorimeter = &d65;
+            return fit::BuildModel(method, training, settings);
           };
           options.methods = methods;
           options.angles_deg = angles_deg;

@@ -27,6 +27,9 @@ struct FitSettings {
   // Fit grid: both 0 for the method's default range; step 0 for its default step.
   double lambda_from_nm = 0, lambda_to_nm = 0, lambda_step_nm = 0;
   bool covariance = true;
+  // Estimate the model's prediction error (PredictionError) by leave-one-composition-out:
+  // one more fit per interior composition (at most 20).
+  bool calibrate = true;
   const AlloyModel* start = nullptr;  // refit: start from this model (same method)
   ProgressCallback progress;          // may be empty
   // auto (required there): the colorimeter its leave-one-out scores colour with, at normal
@@ -53,7 +56,13 @@ std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings&
 // One builder per entry of Methods(), in the same order.
 const std::vector<MethodBuilder>& Builders();
 
-// Builds `method` on the data set; throws Error for an unknown method (listing the known
+// Builds `method` on the data set and, with settings.calibrate and three compositions or
+// more, estimates its prediction error: each interior composition (20 at most, spread by
+// rank) is held out in turn, the method built on the rest predicts it, and the relative
+// eps errors give scale[j] = RMS over folds of error / B (PredictionError); the
+// calibration then makes the held-out CIEDE2000 errors of the folds, divided by their
+// one-sigma colour uncertainty, have an RMS of 1 (colorimeter and visible data needed; 1
+// otherwise). Throws Error for an unknown method (listing the known
 // ones), a bad setting (naming the option) or data the method cannot use.
 std::unique_ptr<AlloyModel> BuildModel(const std::string& method, const Dataset& dataset,
                                        const FitSettings& settings = {});

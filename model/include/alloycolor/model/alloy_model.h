@@ -64,8 +64,32 @@ struct FitSummary {
   bool present() const { return !solver.empty(); }
 };
 
-// Uncertainty is propagated by drawing parameters from the fit's covariance: this many
-// draws, from this seed, wherever the program reports a sigma, so reports repeat exactly.
+// How far a model's predictions between its training compositions are off, estimated
+// by leave-one-composition-out when it is fitted (fit/methods.h): at wavelength node j
+// the relative eps error at composition x is scale[j] * B(x), with
+//   B(x) = 4 t (1 - t) (h / reference_gap)^2,
+// t the position of x in its interval of width h between neighbouring training
+// compositions (B = 0 at each of them; beyond the ends |t(1 - t)|, growing). The
+// calibration factor scales it so that held-out colour errors, in the folds, have the
+// spread the one-sigma colour uncertainty claims. Draws of eps add
+//   calibration * scale * B * |eps| (z1 + i z2) / sqrt(2),
+// z1, z2 standard normal and the same at every wavelength of a draw (the error of an
+// interpolation across composition is smooth in wavelength).
+struct PredictionError {
+  std::vector<double> lambda_nm, scale;  // wavelength nodes, increasing
+  std::vector<double> compositions;      // training compositions, increasing
+  double reference_gap = 1;
+  double calibration = 1;
+  int folds = 0;  // how many folds estimated it
+  bool present() const { return !lambda_nm.empty(); }
+  // B(x) above.
+  double Bump(double x_atomic) const;
+  // scale interpolated linearly in wavelength (held at the ends).
+  double ScaleAt(double lambda_nm) const;
+};
+
+// Uncertainty is propagated by draws of eps: this many, from this seed, wherever the
+// program reports a sigma, so reports repeat exactly.
 inline constexpr int kUncertaintyDraws = 64;
 inline constexpr std::uint32_t kUncertaintySeed = 20261122u;
 
@@ -133,9 +157,10 @@ class AlloyModel {
   // interpolates Drude parameters itself (the paper's) gives its own.
   virtual bool DrudeAt(double x_atomic, double lambda_nm, DrudePoint* out) const;
 
-  // Whether PermittivityDraws gives anything: draws of eps from the parameters'
-  // covariance, for propagating uncertainty to reflectance and colour.
-  virtual bool HasUncertainty() const { return false; }
+  // Whether PermittivityDraws gives anything: draws of eps from the cross-validated
+  // prediction error (or, for a model that has one and no prediction error, from its
+  // parameters' covariance), for propagating uncertainty to reflectance and colour.
+  virtual bool HasUncertainty() const { return prediction_error_.present(); }
   virtual std::vector<std::vector<std::complex<double>>> PermittivityDraws(
       double x_atomic, const std::vector<double>& lambda_nm, int count = kUncertaintyDraws,
       std::uint32_t seed = kUncertaintySeed) const;
@@ -167,6 +192,9 @@ class AlloyModel {
   const std::vector<std::string>& warnings() const { return warnings_; }
   const FitSummary& fit_summary() const { return fit_summary_; }
   void set_fit_summary(FitSummary summary) { fit_summary_ = std::move(summary); }
+  const PredictionError& prediction_error() const { return prediction_error_; }
+  // Throws Error naming the field when the values are not usable.
+  void set_prediction_error(PredictionError error);
 
   // Throws Error naming x when it lies outside [x_min, x_max] (beyond 1e-9).
   void CheckInRange(double x_atomic) const;
@@ -189,6 +217,7 @@ class AlloyModel {
   std::vector<TrainingSample> training_;
   std::vector<std::string> warnings_;
   FitSummary fit_summary_;
+  PredictionError prediction_error_;
 };
 
 // Reads a model file of any method; throws Error naming the file and the field for a

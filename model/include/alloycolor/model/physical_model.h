@@ -284,7 +284,11 @@ class PhysicalModel : public AlloyModel {
   std::string method() const override { return "physical"; }
   std::vector<std::complex<double>> Permittivity(
       double x_atomic, const std::vector<double>& lambda_nm) const override;
-  bool HasUncertainty() const override { return !covariance_.empty(); }
+  // The cross-validated prediction error where the fit estimated one (AlloyModel), else
+  // draws of the coefficients from their covariance.
+  bool HasUncertainty() const override {
+    return AlloyModel::HasUncertainty() || !covariance_.empty();
+  }
   std::vector<std::vector<std::complex<double>>> PermittivityDraws(
       double x_atomic, const std::vector<double>& lambda_nm, int count = kUncertaintyDraws,
       std::uint32_t seed = kUncertaintySeed) const override;

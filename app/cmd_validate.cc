@@ -166,6 +166,31 @@ void PrintSummary(const nlohmann::json& report) {
     }
     std::printf("\n");
   }
+  // How often the observed colour error lay within the method's 1 and 2 sigma.
+  const auto& honesty = report["sigma_honesty"];
+  std::vector<std::string> angles;
+  for (const auto& [method, per_angle] : honesty.items()) {
+    for (const auto& [angle, cell] : per_angle.items()) {
+      if (std::find(angles.begin(), angles.end(), angle) == angles.end()) angles.push_back(angle);
+    }
+  }
+  for (const std::string& angle : angles) {
+    for (const char* key : {"within_1_sigma", "within_2_sigma"}) {
+      std::printf("%-18s", (std::string(key == std::string("within_1_sigma") ? "in_1sigma_" : "in_2sigma_") + angle).c_str());
+      for (const auto& m : methods) {
+        const std::string name = m.get<std::string>();
+        char buf[48];
+        if (!honesty.contains(name) || !honesty[name].contains(angle)) {
+          std::snprintf(buf, sizeof buf, "-");
+        } else {
+          const auto& cell = honesty[name][angle];
+          std::snprintf(buf, sizeof buf, "%d/%d", cell[key].get<int>(), cell["count"].get<int>());
+        }
+        std::printf(" %16s", buf);
+      }
+      std::printf("\n");
+    }
+  }
   if (!report["delta_e00_available"].get<bool>()) {
     std::printf("delta_e00: %s\n", report["metric_ranges"]["delta_e00"].get<std::string>().c_str());
   }
@@ -228,7 +253,8 @@ void RegisterValidate(CLI::App& app) {
       "data's range for infrared sets), max |dn|, |dk|, and its own one-sigma colour "
       "uncertainty where it has one. Writes OUT/report.json and a self-contained "
       "OUT/report.html (tables, swatches, inline SVG plots); prints the mean of each metric "
-      "per method (with wins/count).");
+      "per method (with wins/count) and how many held-out colour errors fell within each "
+      "method's 1 and 2 sigma.");
   cmd->add_option("--data", o->data_dir,
                   "Data set: folder with dataset.json, a manifest, or a bundled set's name")
       ->required();

@@ -160,7 +160,7 @@ void EstimatePredictionError(const std::string& method, const Dataset& dataset,
   std::vector<double> sum_sq(grid.size(), 0.0);
   int count = 0;
   for (const Fold& f : done) {
-    const double bump = f.bump / (reference_gap * reference_gap);
+    const double bump = f.bump / reference_gap;
     if (!(bump > 0)) continue;
     const auto predicted = f.model->Permittivity(f.held.front()->x_atomic, grid);
     for (const Sample* s : f.held) {

@@ -59,8 +59,7 @@ double PredictionError::Bump(double x) const {
   hi = std::clamp<size_t>(hi, 1, n - 1);
   const double h = compositions[hi] - compositions[hi - 1];
   const double t = (x - compositions[hi - 1]) / h;
-  const double g = h / reference_gap;
-  return 4 * std::abs(t * (1 - t)) * g * g;
+  return 4 * std::abs(t * (1 - t)) * h / reference_gap;
 }
 
 double PredictionError::ScaleAt(double l) const {

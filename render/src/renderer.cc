@@ -20,6 +20,8 @@ constexpr double kRayStartZ = 4.0;
 constexpr double kDepthJump = 0.08;
 constexpr int kTraceSteps = 300;
 constexpr double kTraceEpsilon = 1e-6;
+constexpr int kNewtonSteps = 2;
+constexpr double kGrazingSlope = 1e-2;
 
 struct Hit {
   bool hit = false;
@@ -81,7 +83,17 @@ class Geometry {
 
   Vec3 ToLocal(const Vec3& p) const { return {Dot(p, axis_x_), Dot(p, axis_y_), Dot(p, axis_z_)}; }
 
-  // Sphere tracing of the exact distance inside the bounding sphere (radius 1).
+  // The outward unit normal of the torus at p (the gradient of TorusDistance).
+  static Vec3 TorusNormal(const Vec3& p) {
+    const double radial = std::sqrt(p.x * p.x + p.z * p.z);
+    const Vec3 centre = radial > 0.0 ? (kRingMajorRadius / radial) * Vec3{p.x, 0.0, p.z}
+                                     : Vec3{kRingMajorRadius, 0.0, 0.0};
+    return Normalize(p - centre);
+  }
+
+  // Sphere tracing of the exact distance inside the bounding sphere (radius 1), then
+  // Newton steps on the distance along the ray (its slope is dir . normal), which take the
+  // hit from within kTraceEpsilon of the surface to rounding unless the ray grazes.
   Hit Ring(double x, double y) const {
     Hit hit;
     const double d2 = x * x + y * y;
@@ -89,15 +101,22 @@ class Geometry {
     const double half = std::sqrt(1.0 - d2);
     const Vec3 origin = ToLocal(Vec3{x, y, 0.0});
     const Vec3 dir = ToLocal(Vec3{0.0, 0.0, -1.0});
-    double s = -half;  // along -z from the world plane z = 0: z = -s
-    for (int step = 0; step < kTraceSteps && s <= half; ++step) {
+    // Along -z from the world plane z = 0 (z = -s), inside the bounding sphere and the
+    // slab |y| <= kRingTubeRadius of the ring's frame that holds the torus (dir.y < 0).
+    const double s_lo = std::max(-half, (kRingTubeRadius - origin.y) / dir.y);
+    const double s_hi = std::min(half, (-kRingTubeRadius - origin.y) / dir.y) + kTraceEpsilon;
+    double s = s_lo;
+    for (int step = 0; step < kTraceSteps && s <= s_hi; ++step) {
       const Vec3 p = origin + s * dir;
       const double d = TorusDistance(p);
       if (d < kTraceEpsilon) {
-        const double radial = std::sqrt(p.x * p.x + p.z * p.z);
-        const Vec3 centre = radial > 0.0 ? (kRingMajorRadius / radial) * Vec3{p.x, 0.0, p.z}
-                                         : Vec3{kRingMajorRadius, 0.0, 0.0};
-        const Vec3 n = Normalize(p - centre);
+        Vec3 n = TorusNormal(p);
+        for (int newton = 0; newton < kNewtonSteps; ++newton) {
+          const double slope = Dot(dir, n);
+          if (slope > -kGrazingSlope) break;
+          s -= TorusDistance(origin + s * dir) / slope;
+          n = TorusNormal(origin + s * dir);
+        }
         hit.hit = true;
         hit.t = kRayStartZ + s;
         hit.normal = n.x * axis_x_ + n.y * axis_y_ + n.z * axis_z_;
@@ -202,6 +221,149 @@ NormalMap TraceNormals(Shape shape, int size) {
   return map;
 }
 
+namespace internal {
+
+// One term of a pixel's colour (renderer.h): weight * RGB(mu), or a marker in mu.
+struct PixelTerm {
+  float mu;
+  float weight;
+};
+constexpr float kBackdropMu = -1.0f;  // the backdrop (or nothing): weight * RGB(white)
+constexpr float kOutlineMu = -2.0f;   // an outline pixel: the next OutlinePixel of its block
+
+// A supersampled pixel: sum of its samples' terms plus background * RGB(white).
+struct OutlinePixel {
+  int first, count;  // its terms in TileBlock::samples
+  float background;
+  float alpha;
+};
+
+// The rows [b * kPlanRows, (b + 1) * kPlanRows) of the tile.
+struct TileBlock {
+  std::vector<OutlinePixel> outline;  // in pixel order
+  std::vector<PixelTerm> samples;
+};
+
+struct TilePlan {
+  static constexpr int kRows = 8;
+  std::vector<PixelTerm> pixels;  // size * size, top row first
+  std::vector<TileBlock> blocks;
+};
+
+}  // namespace internal
+
+namespace {
+
+// Traces the tile of `options` (renderer.h): the geometry, the outline's samples and the
+// light E at every hit.
+std::unique_ptr<internal::TilePlan> TraceTile(const RenderOptions& options,
+                                              const Environment& environment,
+                                              const PrefilteredEnvironment* prefiltered) {
+  using internal::PixelTerm;
+  const int size = options.size;
+  const double scale = kObjectFraction * size;
+  const double half = 0.5 * size;
+  const Geometry geometry(options.shape);
+  const bool uniform = options.lighting == Lighting::kUniform;
+  const bool transparent = options.background == Background::kTransparent;
+  const Vec3 view{0.0, 0.0, 1.0};
+  const auto intersect = [&](double px, double py) {
+    return geometry.Intersect((px - half) / scale, (half - py) / scale);
+  };
+  const auto cosine = [](const Hit& hit) { return std::clamp(hit.normal.z, 0.0, 1.0); };
+  // The light E reaching the camera by mirror reflection at a hit.
+  const auto light = [&](const Hit& hit) {
+    if (uniform) return 1.0;
+    const Vec3 r = Reflect(view, hit.normal);
+    return prefiltered != nullptr ? prefiltered->At(r) : environment.Radiance(r);
+  };
+  const auto backdrop = [&](double px, double py) {
+    return environment.Backdrop(px / size, py / size);
+  };
+
+  auto plan = std::make_unique<internal::TilePlan>();
+  constexpr int kRows = internal::TilePlan::kRows;
+  plan->pixels.resize(static_cast<std::size_t>(size) * size);
+  plan->blocks.resize((size + kRows - 1) / kRows);
+  internal::ParallelFor(
+      size, kRows, internal::ThreadCount(options.threads), [&](int row_begin, int row_end) {
+        internal::TileBlock& block = plan->blocks[row_begin / kRows];
+        // Hits at the pixel corners of rows row_begin..row_end.
+        const int stride = size + 1;
+        std::vector<CornerHit> corners(static_cast<std::size_t>(row_end - row_begin + 1) * stride);
+        for (int j = row_begin; j <= row_end; ++j) {
+          for (int i = 0; i <= size; ++i) {
+            const Hit hit = intersect(i, j);
+            corners[static_cast<std::size_t>(j - row_begin) * stride + i] = {hit.hit, hit.t};
+          }
+        }
+        std::vector<PixelTerm> hits;
+        for (int j = row_begin; j < row_end; ++j) {
+          const CornerHit* top = &corners[static_cast<std::size_t>(j - row_begin) * stride];
+          const CornerHit* bottom = top + stride;
+          for (int i = 0; i < size; ++i) {
+            PixelTerm& pixel = plan->pixels[static_cast<std::size_t>(j) * size + i];
+            const Hit centre = intersect(i + 0.5, j + 0.5);
+            bool edge = false;
+            for (const CornerHit* corner : {&top[i], &top[i + 1], &bottom[i], &bottom[i + 1]}) {
+              if (corner->hit != centre.hit ||
+                  (centre.hit && std::abs(corner->t - centre.t) > kDepthJump)) {
+                edge = true;
+              }
+            }
+            if (!edge) {
+              if (centre.hit) {
+                pixel = {static_cast<float>(cosine(centre)), static_cast<float>(light(centre))};
+              } else {
+                pixel = {internal::kBackdropMu,
+                         transparent ? 0.0f : static_cast<float>(backdrop(i + 0.5, j + 0.5))};
+              }
+              continue;
+            }
+            hits.clear();
+            double background = 0.0;
+            for (int b = 0; b < kEdgeSamples; ++b) {
+              for (int a = 0; a < kEdgeSamples; ++a) {
+                const double px = i + (a + 0.5) / kEdgeSamples;
+                const double py = j + (b + 0.5) / kEdgeSamples;
+                const Hit hit = intersect(px, py);
+                if (hit.hit) {
+                  hits.push_back({static_cast<float>(cosine(hit)), static_cast<float>(light(hit))});
+                } else if (!transparent) {
+                  background += backdrop(px, py);
+                }
+              }
+            }
+            const int total = kEdgeSamples * kEdgeSamples;
+            const int count = static_cast<int>(hits.size());
+            const double coverage = static_cast<double>(count) / total;
+            // The object's colour is the mean of its samples' (in uniform light exactly the
+            // centre ray's when it hits), blended with the backdrop by the coverage.
+            const double share = transparent ? 1.0 : coverage;
+            internal::OutlinePixel outline;
+            outline.first = static_cast<int>(block.samples.size());
+            if (uniform && centre.hit) {
+              block.samples.push_back({static_cast<float>(cosine(centre)), static_cast<float>(share)});
+            } else {
+              for (const PixelTerm& hit : hits) {
+                block.samples.push_back({hit.mu, static_cast<float>(share * hit.weight / count)});
+              }
+            }
+            outline.count = static_cast<int>(block.samples.size()) - outline.first;
+            const int misses = total - count;
+            outline.background =
+                misses > 0 ? static_cast<float>((1.0 - coverage) * background / misses) : 0.0f;
+            outline.alpha = transparent ? static_cast<float>(coverage) : 1.0f;
+            block.outline.push_back(outline);
+            pixel = {internal::kOutlineMu, 0.0f};
+          }
+        }
+      });
+  return plan;
+}
+
+}  // namespace
+
 Renderer::Renderer(const color::Colorimeter& colorimeter, const RenderOptions& options)
     : colorimeter_(colorimeter), options_(options), environment_(options.lighting) {
   CheckOptions(options_);
@@ -209,6 +371,7 @@ Renderer::Renderer(const color::Colorimeter& colorimeter, const RenderOptions& o
     prefiltered_ = std::make_unique<PrefilteredEnvironment>(
         environment_, options_.roughness, internal::ThreadCount(options_.threads));
   }
+  plan_ = TraceTile(options_, environment_, prefiltered_.get());
 }
 
 Renderer::~Renderer() = default;
@@ -226,7 +389,29 @@ LinearImage Renderer::Render(const ReflectionTable& table) const {
   if (table.roughness() != options_.roughness) {
     throw Error("render: the table's roughness differs from the options'");
   }
-  return RenderWith(table);
+  // The table in linear sRGB (a linear map of XYZ, so interpolating it is interpolating
+  // XYZ and converting).
+  static const SRGBMatrix kMatrix;
+  const auto& m = kMatrix.m;
+  const std::vector<double>& xyz = table.nodes();
+  std::vector<double> rgb(xyz.size());
+  for (std::size_t n = 0; n < xyz.size(); n += 3) {
+    for (int c = 0; c < 3; ++c) {
+      rgb[n + c] = m[c][0] * xyz[n] + m[c][1] * xyz[n + 1] + m[c][2] * xyz[n + 2];
+    }
+  }
+  const int last = table.size() - 1;
+  const double* nodes = rgb.data();
+  return Shade([nodes, last](double mu, double* out) {
+    const double t = mu * last;
+    int i = static_cast<int>(t);
+    if (i >= last) i = last - 1;
+    const double f = t - i;
+    const double* a = nodes + 3 * i;
+    out[0] = a[0] + f * (a[3] - a[0]);
+    out[1] = a[1] + f * (a[4] - a[1]);
+    out[2] = a[2] + f * (a[5] - a[2]);
+  });
 }
 
 LinearImage Renderer::Render(const DirectReflection& direct) const {
@@ -238,119 +423,54 @@ LinearImage Renderer::Render(const DirectReflection& direct) const {
         "direct spectral evaluation at every pixel is offered for a smooth surface "
         "(roughness 0) only; a rough surface is shaded from its table");
   }
-  return RenderWith(direct);
-}
-
-template <typename Reflection>
-LinearImage Renderer::RenderWith(const Reflection& reflection) const {
-  const int size = options_.size;
-  const double scale = kObjectFraction * size;
-  const double half = 0.5 * size;
-  const Geometry geometry(options_.shape);
-  const bool uniform = options_.lighting == Lighting::kUniform;
-  const bool transparent = options_.background == Background::kTransparent;
-  const color::XYZ white = colorimeter_.White();
-  const Vec3 view{0.0, 0.0, 1.0};
-
-  const auto intersect = [&](double px, double py) {
-    return geometry.Intersect((px - half) / scale, (half - py) / scale);
-  };
-  // XYZ of the light the object sends toward the camera at a hit.
-  const auto shade = [&](const Hit& hit) {
-    const double mu = std::max(0.0, hit.normal.z);
-    const color::XYZ c = reflection.At(mu);
-    if (uniform) return c;
-    const Vec3 r = Reflect(view, hit.normal);
-    const double e = prefiltered_ ? prefiltered_->At(r) : environment_.Radiance(r);
-    return color::XYZ{e * c.X, e * c.Y, e * c.Z};
-  };
-  const auto backdrop = [&](double px, double py) {
-    const double e = environment_.Backdrop(px / size, py / size);
-    return color::XYZ{e * white.X, e * white.Y, e * white.Z};
-  };
   static const SRGBMatrix kMatrix;
   const auto& m = kMatrix.m;
-  const auto store = [&m](float* pixel, const color::XYZ& c, double alpha) {
-    pixel[0] = static_cast<float>(m[0][0] * c.X + m[0][1] * c.Y + m[0][2] * c.Z);
-    pixel[1] = static_cast<float>(m[1][0] * c.X + m[1][1] * c.Y + m[1][2] * c.Z);
-    pixel[2] = static_cast<float>(m[2][0] * c.X + m[2][1] * c.Y + m[2][2] * c.Z);
-    pixel[3] = static_cast<float>(alpha);
-  };
+  return Shade([&direct, &m](double mu, double* out) {
+    const color::XYZ c = direct.At(mu);
+    for (int k = 0; k < 3; ++k) out[k] = m[k][0] * c.X + m[k][1] * c.Y + m[k][2] * c.Z;
+  });
+}
 
+template <typename ColourAt>
+LinearImage Renderer::Shade(const ColourAt& rgb) const {
+  const int size = options_.size;
+  const internal::TilePlan& plan = *plan_;
+  const color::RGB white = color::LinearSRGBFromXYZ(colorimeter_.White());
+  const float backdrop_alpha = options_.background == Background::kTransparent ? 0.0f : 1.0f;
   LinearImage image(size, size);
-  constexpr int kRowBlock = 8;
+  constexpr int kRows = internal::TilePlan::kRows;
   internal::ParallelFor(
-      size, kRowBlock, internal::ThreadCount(options_.threads), [&](int row_begin, int row_end) {
-        // Hits at the pixel corners of rows row_begin..row_end.
-        const int stride = size + 1;
-        std::vector<CornerHit> corners(static_cast<std::size_t>(row_end - row_begin + 1) * stride);
-        for (int j = row_begin; j <= row_end; ++j) {
-          for (int i = 0; i <= size; ++i) {
-            const Hit hit = intersect(i, j);
-            corners[static_cast<std::size_t>(j - row_begin) * stride + i] = {hit.hit, hit.t};
-          }
-        }
-        for (int j = row_begin; j < row_end; ++j) {
-          const CornerHit* top = &corners[static_cast<std::size_t>(j - row_begin) * stride];
-          const CornerHit* bottom = top + stride;
-          for (int i = 0; i < size; ++i) {
-            float* pixel = image.Pixel(i, j);
-            const Hit centre = intersect(i + 0.5, j + 0.5);
-            bool edge = false;
-            for (const CornerHit* corner : {&top[i], &top[i + 1], &bottom[i], &bottom[i + 1]}) {
-              if (corner->hit != centre.hit ||
-                  (centre.hit && std::abs(corner->t - centre.t) > kDepthJump)) {
-                edge = true;
-              }
+      size, kRows, internal::ThreadCount(options_.threads), [&](int row_begin, int row_end) {
+        const internal::TileBlock& block = plan.blocks[row_begin / kRows];
+        const internal::OutlinePixel* outline = block.outline.data();
+        const std::size_t begin = static_cast<std::size_t>(row_begin) * size;
+        const std::size_t end = static_cast<std::size_t>(row_end) * size;
+        float* pixel = &image.rgba[4 * begin];
+        for (std::size_t p = begin; p < end; ++p, pixel += 4) {
+          const internal::PixelTerm term = plan.pixels[p];
+          double c[3];
+          if (term.mu >= 0.0f) {
+            rgb(term.mu, c);
+            pixel[0] = static_cast<float>(term.weight * c[0]);
+            pixel[1] = static_cast<float>(term.weight * c[1]);
+            pixel[2] = static_cast<float>(term.weight * c[2]);
+            pixel[3] = 1.0f;
+          } else if (term.mu == internal::kBackdropMu) {
+            pixel[0] = static_cast<float>(term.weight * white.r);
+            pixel[1] = static_cast<float>(term.weight * white.g);
+            pixel[2] = static_cast<float>(term.weight * white.b);
+            pixel[3] = backdrop_alpha;
+          } else {
+            const internal::OutlinePixel& o = *outline++;
+            double sum[3] = {o.background * white.r, o.background * white.g,
+                             o.background * white.b};
+            for (int s = o.first; s < o.first + o.count; ++s) {
+              const internal::PixelTerm& sample = block.samples[s];
+              rgb(sample.mu, c);
+              for (int k = 0; k < 3; ++k) sum[k] += sample.weight * c[k];
             }
-            if (!edge) {
-              if (centre.hit) {
-                store(pixel, shade(centre), 1.0);
-              } else if (transparent) {
-                store(pixel, color::XYZ{0.0, 0.0, 0.0}, 0.0);
-              } else {
-                store(pixel, backdrop(i + 0.5, j + 0.5), 1.0);
-              }
-              continue;
-            }
-            color::XYZ object{0.0, 0.0, 0.0}, background{0.0, 0.0, 0.0};
-            int hits = 0;
-            for (int b = 0; b < kEdgeSamples; ++b) {
-              for (int a = 0; a < kEdgeSamples; ++a) {
-                const double px = i + (a + 0.5) / kEdgeSamples;
-                const double py = j + (b + 0.5) / kEdgeSamples;
-                const Hit hit = intersect(px, py);
-                const color::XYZ c =
-                    hit.hit ? shade(hit) : (transparent ? color::XYZ{0, 0, 0} : backdrop(px, py));
-                color::XYZ& sum = hit.hit ? object : background;
-                sum.X += c.X;
-                sum.Y += c.Y;
-                sum.Z += c.Z;
-                hits += hit.hit;
-              }
-            }
-            const int total = kEdgeSamples * kEdgeSamples;
-            const double coverage = static_cast<double>(hits) / total;
-            // The object's colour: in uniform light exactly the centre ray's when it hits.
-            color::XYZ colour{0.0, 0.0, 0.0};
-            if (uniform && centre.hit) {
-              colour = shade(centre);
-            } else if (hits > 0) {
-              colour = {object.X / hits, object.Y / hits, object.Z / hits};
-            }
-            if (transparent) {
-              store(pixel, colour, coverage);
-            } else {
-              const int misses = total - hits;
-              const color::XYZ bg = misses > 0 ? color::XYZ{background.X / misses, background.Y / misses,
-                                              background.Z / misses}
-                                        : color::XYZ{0.0, 0.0, 0.0};
-              store(pixel,
-                    color::XYZ{coverage * colour.X + (1.0 - coverage) * bg.X,
-                        coverage * colour.Y + (1.0 - coverage) * bg.Y,
-                        coverage * colour.Z + (1.0 - coverage) * bg.Z},
-                    1.0);
-            }
+            for (int k = 0; k < 3; ++k) pixel[k] = static_cast<float>(sum[k]);
+            pixel[3] = o.alpha;
           }
         }
       });

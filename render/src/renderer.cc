@@ -57,10 +57,45 @@ class Geometry {
     axis_y_ = {0.0, std::cos(e), std::sin(e)};
     axis_x_ = {1.0, 0.0, 0.0};
     axis_z_ = Cross(axis_x_, axis_y_);
+    dir_ = ToLocal(Vec3{0.0, 0.0, -1.0});
   }
 
   Hit Intersect(double x, double y) const {
-    return shape_ == Shape::kSphere ? Sphere(x, y) : Ring(x, y);
+    Hit hit;
+    Intersect(&x, &y, 1, &hit);
+    return hit;
+  }
+
+  // hits[k] for the rays through (x[k], y[k]), k < n. The ring's rays are traced
+  // kLanes at a time, interleaved (each exactly as on its own), so that the processor
+  // overlaps their independent chains of square roots.
+  void Intersect(const double* x, const double* y, int n, Hit* hits) const {
+    if (shape_ == Shape::kSphere) {
+      for (int k = 0; k < n; ++k) hits[k] = Sphere(x[k], y[k]);
+      return;
+    }
+    constexpr int kLanes = 8;
+    for (int first = 0; first < n; first += kLanes) {
+      const int lanes = std::min(kLanes, n - first);
+      RingRay rays[kLanes];
+      bool active[kLanes];
+      int left = 0;
+      for (int k = 0; k < lanes; ++k) {
+        active[k] = StartRing(x[first + k], y[first + k], &rays[k]);
+        hits[first + k] = Hit{};
+        left += active[k];
+      }
+      while (left > 0) {
+        for (int k = 0; k < lanes; ++k) {
+          if (!active[k]) continue;
+          const int state = StepRing(&rays[k]);
+          if (state == kMarching) continue;
+          if (state == kHit) hits[first + k] = FinishRing(rays[k]);
+          active[k] = false;
+          --left;
+        }
+      }
+    }
   }
 
  private:
@@ -81,8 +116,6 @@ class Geometry {
     return std::sqrt(q * q + p.y * p.y) - kRingTubeRadius;
   }
 
-  Vec3 ToLocal(const Vec3& p) const { return {Dot(p, axis_x_), Dot(p, axis_y_), Dot(p, axis_z_)}; }
-
   // The outward unit normal of the torus at p (the gradient of TorusDistance).
   static Vec3 TorusNormal(const Vec3& p) {
     const double radial = std::sqrt(p.x * p.x + p.z * p.z);
@@ -91,44 +124,56 @@ class Geometry {
     return Normalize(p - centre);
   }
 
-  // Sphere tracing of the exact distance inside the bounding sphere (radius 1), then
-  // Newton steps on the distance along the ray (its slope is dir . normal), which take the
-  // hit from within kTraceEpsilon of the surface to rounding unless the ray grazes.
-  Hit Ring(double x, double y) const {
-    Hit hit;
+  Vec3 ToLocal(const Vec3& p) const { return {Dot(p, axis_x_), Dot(p, axis_y_), Dot(p, axis_z_)}; }
+
+  // Sphere tracing of the exact distance inside the bounding sphere (radius 1) and the
+  // slab |y| <= kRingTubeRadius of the ring's frame that holds the torus, then Newton
+  // steps on the distance along the ray (its slope is dir . normal), which take the hit
+  // from within kTraceEpsilon of the surface to rounding unless the ray grazes.
+  struct RingRay {
+    Vec3 origin;    // in the ring's frame; the ray is origin + s dir_, z = -s in the world
+    double s, s_hi;
+    int step;
+  };
+  enum { kMarching, kHit, kMiss };
+
+  bool StartRing(double x, double y, RingRay* ray) const {
     const double d2 = x * x + y * y;
-    if (d2 >= 1.0) return hit;
+    if (d2 >= 1.0) return false;
     const double half = std::sqrt(1.0 - d2);
-    const Vec3 origin = ToLocal(Vec3{x, y, 0.0});
-    const Vec3 dir = ToLocal(Vec3{0.0, 0.0, -1.0});
-    // Along -z from the world plane z = 0 (z = -s), inside the bounding sphere and the
-    // slab |y| <= kRingTubeRadius of the ring's frame that holds the torus (dir.y < 0).
-    const double s_lo = std::max(-half, (kRingTubeRadius - origin.y) / dir.y);
-    const double s_hi = std::min(half, (-kRingTubeRadius - origin.y) / dir.y) + kTraceEpsilon;
-    double s = s_lo;
-    for (int step = 0; step < kTraceSteps && s <= s_hi; ++step) {
-      const Vec3 p = origin + s * dir;
-      const double d = TorusDistance(p);
-      if (d < kTraceEpsilon) {
-        Vec3 n = TorusNormal(p);
-        for (int newton = 0; newton < kNewtonSteps; ++newton) {
-          const double slope = Dot(dir, n);
-          if (slope > -kGrazingSlope) break;
-          s -= TorusDistance(origin + s * dir) / slope;
-          n = TorusNormal(origin + s * dir);
-        }
-        hit.hit = true;
-        hit.t = kRayStartZ + s;
-        hit.normal = n.x * axis_x_ + n.y * axis_y_ + n.z * axis_z_;
-        return hit;
-      }
-      s += d;
+    ray->origin = ToLocal(Vec3{x, y, 0.0});
+    // dir_.y < 0: the ray crosses the slab from y = +tube to y = -tube.
+    ray->s = std::max(-half, (kRingTubeRadius - ray->origin.y) / dir_.y);
+    ray->s_hi = std::min(half, (-kRingTubeRadius - ray->origin.y) / dir_.y) + kTraceEpsilon;
+    ray->step = 0;
+    return ray->s <= ray->s_hi;
+  }
+
+  int StepRing(RingRay* ray) const {
+    const double d = TorusDistance(ray->origin + ray->s * dir_);
+    if (d < kTraceEpsilon) return kHit;
+    ray->s += d;
+    return ++ray->step < kTraceSteps && ray->s <= ray->s_hi ? kMarching : kMiss;
+  }
+
+  Hit FinishRing(RingRay ray) const {
+    Vec3 n = TorusNormal(ray.origin + ray.s * dir_);
+    for (int newton = 0; newton < kNewtonSteps; ++newton) {
+      const double slope = Dot(dir_, n);
+      if (slope > -kGrazingSlope) break;
+      ray.s -= TorusDistance(ray.origin + ray.s * dir_) / slope;
+      n = TorusNormal(ray.origin + ray.s * dir_);
     }
+    Hit hit;
+    hit.hit = true;
+    hit.t = kRayStartZ + ray.s;
+    hit.normal = n.x * axis_x_ + n.y * axis_y_ + n.z * axis_z_;
     return hit;
   }
 
   Shape shape_;
   Vec3 axis_x_{}, axis_y_{}, axis_z_{};
+  Vec3 dir_{};  // the view ray's direction (0, 0, -1) in the ring's frame
 };
 
 void CheckOptions(const RenderOptions& o) {
@@ -238,7 +283,7 @@ struct OutlinePixel {
   float alpha;
 };
 
-// The rows [b * kPlanRows, (b + 1) * kPlanRows) of the tile.
+// The rows [b * TilePlan::kRows, (b + 1) * TilePlan::kRows) of the tile.
 struct TileBlock {
   std::vector<OutlinePixel> outline;  // in pixel order
   std::vector<PixelTerm> samples;
@@ -267,9 +312,6 @@ std::unique_ptr<internal::TilePlan> TraceTile(const RenderOptions& options,
   const bool uniform = options.lighting == Lighting::kUniform;
   const bool transparent = options.background == Background::kTransparent;
   const Vec3 view{0.0, 0.0, 1.0};
-  const auto intersect = [&](double px, double py) {
-    return geometry.Intersect((px - half) / scale, (half - py) / scale);
-  };
   const auto cosine = [](const Hit& hit) { return std::clamp(hit.normal.z, 0.0, 1.0); };
   // The light E reaching the camera by mirror reflection at a hit.
   const auto light = [&](const Hit& hit) {
@@ -281,6 +323,21 @@ std::unique_ptr<internal::TilePlan> TraceTile(const RenderOptions& options,
     return environment.Backdrop(px / size, py / size);
   };
 
+  // Hits of the rays through pixel positions (px[k], py[k]); world holds the positions
+  // in world units.
+  const auto intersect = [&](const std::vector<double>& px, const std::vector<double>& py,
+                             std::vector<double> world[2], std::vector<Hit>* hits) {
+    world[0].resize(px.size());
+    world[1].resize(px.size());
+    for (std::size_t k = 0; k < px.size(); ++k) {
+      world[0][k] = (px[k] - half) / scale;
+      world[1][k] = (half - py[k]) / scale;
+    }
+    hits->resize(px.size());
+    geometry.Intersect(world[0].data(), world[1].data(), static_cast<int>(px.size()),
+                       hits->data());
+  };
+
   auto plan = std::make_unique<internal::TilePlan>();
   constexpr int kRows = internal::TilePlan::kRows;
   plan->pixels.resize(static_cast<std::size_t>(size) * size);
@@ -288,22 +345,32 @@ std::unique_ptr<internal::TilePlan> TraceTile(const RenderOptions& options,
   internal::ParallelFor(
       size, kRows, internal::ThreadCount(options.threads), [&](int row_begin, int row_end) {
         internal::TileBlock& block = plan->blocks[row_begin / kRows];
+        std::vector<double> px, py, world[2];
+        std::vector<Hit> row;
         // Hits at the pixel corners of rows row_begin..row_end.
         const int stride = size + 1;
         std::vector<CornerHit> corners(static_cast<std::size_t>(row_end - row_begin + 1) * stride);
         for (int j = row_begin; j <= row_end; ++j) {
+          px.resize(stride);
+          py.assign(stride, j);
+          for (int i = 0; i <= size; ++i) px[i] = i;
+          intersect(px, py, world, &row);
           for (int i = 0; i <= size; ++i) {
-            const Hit hit = intersect(i, j);
-            corners[static_cast<std::size_t>(j - row_begin) * stride + i] = {hit.hit, hit.t};
+            corners[static_cast<std::size_t>(j - row_begin) * stride + i] = {row[i].hit, row[i].t};
           }
         }
         std::vector<PixelTerm> hits;
+        std::vector<Hit> centres, samples;
         for (int j = row_begin; j < row_end; ++j) {
           const CornerHit* top = &corners[static_cast<std::size_t>(j - row_begin) * stride];
           const CornerHit* bottom = top + stride;
+          px.resize(size);
+          py.assign(size, j + 0.5);
+          for (int i = 0; i < size; ++i) px[i] = i + 0.5;
+          intersect(px, py, world, &centres);
           for (int i = 0; i < size; ++i) {
             PixelTerm& pixel = plan->pixels[static_cast<std::size_t>(j) * size + i];
-            const Hit centre = intersect(i + 0.5, j + 0.5);
+            const Hit& centre = centres[i];
             bool edge = false;
             for (const CornerHit* corner : {&top[i], &top[i + 1], &bottom[i], &bottom[i + 1]}) {
               if (corner->hit != centre.hit ||
@@ -320,18 +387,23 @@ std::unique_ptr<internal::TilePlan> TraceTile(const RenderOptions& options,
               }
               continue;
             }
-            hits.clear();
-            double background = 0.0;
+            px.clear();
+            py.clear();
             for (int b = 0; b < kEdgeSamples; ++b) {
               for (int a = 0; a < kEdgeSamples; ++a) {
-                const double px = i + (a + 0.5) / kEdgeSamples;
-                const double py = j + (b + 0.5) / kEdgeSamples;
-                const Hit hit = intersect(px, py);
-                if (hit.hit) {
-                  hits.push_back({static_cast<float>(cosine(hit)), static_cast<float>(light(hit))});
-                } else if (!transparent) {
-                  background += backdrop(px, py);
-                }
+                px.push_back(i + (a + 0.5) / kEdgeSamples);
+                py.push_back(j + (b + 0.5) / kEdgeSamples);
+              }
+            }
+            intersect(px, py, world, &samples);
+            hits.clear();
+            double background = 0.0;
+            for (std::size_t k = 0; k < samples.size(); ++k) {
+              const Hit& hit = samples[k];
+              if (hit.hit) {
+                hits.push_back({static_cast<float>(cosine(hit)), static_cast<float>(light(hit))});
+              } else if (!transparent) {
+                background += backdrop(px[k], py[k]);
               }
             }
             const int total = kEdgeSamples * kEdgeSamples;

@@ -20,7 +20,6 @@ constexpr double kRayStartZ = 4.0;
 constexpr double kDepthJump = 0.08;
 constexpr int kTraceSteps = 300;
 constexpr double kTraceEpsilon = 1e-6;
-constexpr int kNewtonSteps = 2;
 constexpr double kGrazingSlope = 1e-2;
 
 struct Hit {
@@ -66,35 +65,12 @@ class Geometry {
     return hit;
   }
 
-  // hits[k] for the rays through (x[k], y[k]), k < n. The ring's rays are traced
-  // kLanes at a time, interleaved (each exactly as on its own), so that the processor
-  // overlaps their independent chains of square roots.
+  // hits[k] for the rays through (x[k], y[k]), k < n.
   void Intersect(const double* x, const double* y, int n, Hit* hits) const {
     if (shape_ == Shape::kSphere) {
       for (int k = 0; k < n; ++k) hits[k] = Sphere(x[k], y[k]);
-      return;
-    }
-    constexpr int kLanes = 8;
-    for (int first = 0; first < n; first += kLanes) {
-      const int lanes = std::min(kLanes, n - first);
-      RingRay rays[kLanes];
-      bool active[kLanes];
-      int left = 0;
-      for (int k = 0; k < lanes; ++k) {
-        active[k] = StartRing(x[first + k], y[first + k], &rays[k]);
-        hits[first + k] = Hit{};
-        left += active[k];
-      }
-      while (left > 0) {
-        for (int k = 0; k < lanes; ++k) {
-          if (!active[k]) continue;
-          const int state = StepRing(&rays[k]);
-          if (state == kMarching) continue;
-          if (state == kHit) hits[first + k] = FinishRing(rays[k]);
-          active[k] = false;
-          --left;
-        }
-      }
+    } else {
+      IntersectRing(x, y, n, hits);
     }
   }
 
@@ -127,15 +103,15 @@ class Geometry {
   Vec3 ToLocal(const Vec3& p) const { return {Dot(p, axis_x_), Dot(p, axis_y_), Dot(p, axis_z_)}; }
 
   // Sphere tracing of the exact distance inside the bounding sphere (radius 1) and the
-  // slab |y| <= kRingTubeRadius of the ring's frame that holds the torus, then Newton
-  // steps on the distance along the ray (its slope is dir . normal), which take the hit
-  // from within kTraceEpsilon of the surface to rounding unless the ray grazes.
+  // slab |y| <= kRingTubeRadius of the ring's frame that holds the torus, then a Newton
+  // step on the distance along the ray (its slope is dir . normal), which takes the hit
+  // from within kTraceEpsilon of the surface to about kTraceEpsilon^2 / kRingTubeRadius
+  // unless the ray grazes.
   struct RingRay {
     Vec3 origin;    // in the ring's frame; the ray is origin + s dir_, z = -s in the world
     double s, s_hi;
     int step;
   };
-  enum { kMarching, kHit, kMiss };
 
   bool StartRing(double x, double y, RingRay* ray) const {
     const double d2 = x * x + y * y;
@@ -149,19 +125,66 @@ class Geometry {
     return ray->s <= ray->s_hi;
   }
 
-  int StepRing(RingRay* ray) const {
-    const double d = TorusDistance(ray->origin + ray->s * dir_);
-    if (d < kTraceEpsilon) return kHit;
-    ray->s += d;
-    return ++ray->step < kTraceSteps && ray->s <= ray->s_hi ? kMarching : kMiss;
+  // The ring's rays kLanes at a time, each traced exactly as on its own: the distances of
+  // all lanes are computed together (independent square roots, which the processor
+  // overlaps and the compiler may vectorise), and a lane whose ray has ended takes the
+  // next one.
+  void IntersectRing(const double* x, const double* y, int n, Hit* hits) const {
+    constexpr int kLanes = 8;
+    int ray_of[kLanes];  // -1: idle
+    double ox[kLanes], oy[kLanes], oz[kLanes], s[kLanes], s_hi[kLanes];
+    int steps[kLanes];
+    int next = 0;
+    // Gives the lane the next ray that enters the slab (the others miss at once).
+    const auto load = [&](int lane) {
+      while (next < n) {
+        const int k = next++;
+        hits[k] = Hit{};
+        RingRay ray;
+        if (!StartRing(x[k], y[k], &ray)) continue;
+        ray_of[lane] = k;
+        ox[lane] = ray.origin.x;
+        oy[lane] = ray.origin.y;
+        oz[lane] = ray.origin.z;
+        s[lane] = ray.s;
+        s_hi[lane] = ray.s_hi;
+        steps[lane] = 0;
+        return true;
+      }
+      ray_of[lane] = -1;
+      ox[lane] = oy[lane] = oz[lane] = s[lane] = s_hi[lane] = 0.0;
+      return false;
+    };
+    int busy = 0;
+    for (int lane = 0; lane < kLanes; ++lane) busy += load(lane);
+    while (busy > 0) {
+      double d[kLanes];
+      for (int lane = 0; lane < kLanes; ++lane) {
+        d[lane] = TorusDistance(Vec3{ox[lane], oy[lane], oz[lane]} + s[lane] * dir_);
+      }
+      for (int lane = 0; lane < kLanes; ++lane) {
+        if (ray_of[lane] < 0) continue;
+        const bool hit = d[lane] < kTraceEpsilon;
+        if (!hit) {
+          s[lane] += d[lane];
+          if (++steps[lane] < kTraceSteps && s[lane] <= s_hi[lane]) continue;
+        } else {
+          hits[ray_of[lane]] =
+              FinishRing(RingRay{{ox[lane], oy[lane], oz[lane]}, s[lane], s_hi[lane], steps[lane]},
+                         d[lane]);
+        }
+        busy -= !load(lane);
+      }
+    }
   }
 
-  Hit FinishRing(RingRay ray) const {
+  // The hit of a ray whose distance to the torus at ray.s is `distance` (below
+  // kTraceEpsilon), polished by the Newton step.
+  Hit FinishRing(RingRay ray, double distance) const {
     Vec3 n = TorusNormal(ray.origin + ray.s * dir_);
-    for (int newton = 0; newton < kNewtonSteps; ++newton) {
-      const double slope = Dot(dir_, n);
-      if (slope > -kGrazingSlope) break;
-      ray.s -= TorusDistance(ray.origin + ray.s * dir_) / slope;
+    const double slope = Dot(dir_, n);
+    if (slope < -kGrazingSlope) {
+      ray.s -= distance / slope;
       n = TorusNormal(ray.origin + ray.s * dir_);
     }
     Hit hit;
@@ -174,6 +197,57 @@ class Geometry {
   Shape shape_;
   Vec3 axis_x_{}, axis_y_{}, axis_z_{};
   Vec3 dir_{};  // the view ray's direction (0, 0, -1) in the ring's frame
+};
+
+// The rays of a size x size tile through pixel positions (renderer.h), traced in batches.
+class TileTracer {
+ public:
+  TileTracer(Shape shape, int size)
+      : geometry_(shape), scale_(kObjectFraction * size), half_(0.5 * size) {}
+
+  // The rays through (px0 + i, py), i < count: a row of pixel corners (px0 = 0) or centres
+  // (px0 = 1/2).
+  const std::vector<Hit>& Row(double px0, double py, int count) {
+    px_.resize(count);
+    py_.assign(count, py);
+    for (int i = 0; i < count; ++i) px_[i] = px0 + i;
+    return Trace();
+  }
+
+  // The kEdgeSamples x kEdgeSamples sample rays of pixel (i, j), row by row; Px(k), Py(k)
+  // give their positions.
+  const std::vector<Hit>& Samples(int i, int j) {
+    px_.clear();
+    py_.clear();
+    for (int b = 0; b < kEdgeSamples; ++b) {
+      for (int a = 0; a < kEdgeSamples; ++a) {
+        px_.push_back(i + (a + 0.5) / kEdgeSamples);
+        py_.push_back(j + (b + 0.5) / kEdgeSamples);
+      }
+    }
+    return Trace();
+  }
+  double Px(int k) const { return px_[k]; }
+  double Py(int k) const { return py_[k]; }
+
+ private:
+  const std::vector<Hit>& Trace() {
+    const std::size_t n = px_.size();
+    x_.resize(n);
+    y_.resize(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      x_[k] = (px_[k] - half_) / scale_;
+      y_[k] = (half_ - py_[k]) / scale_;
+    }
+    hits_.resize(n);
+    geometry_.Intersect(x_.data(), y_.data(), static_cast<int>(n), hits_.data());
+    return hits_;
+  }
+
+  Geometry geometry_;
+  double scale_, half_;
+  std::vector<double> px_, py_, x_, y_;  // pixel and world positions
+  std::vector<Hit> hits_;
 };
 
 void CheckOptions(const RenderOptions& o) {
@@ -210,29 +284,26 @@ NormalMap TraceNormals(Shape shape, int size) {
     throw Error("image size " + std::to_string(size) + " lies outside 1-" +
                 std::to_string(kMaxTileSize) + " pixels");
   }
-  const double scale = kObjectFraction * size;
-  const double half = 0.5 * size;
-  const Geometry geometry(shape);
-  const auto intersect = [&](double px, double py) {
-    return geometry.Intersect((px - half) / scale, (half - py) / scale);
-  };
+  TileTracer tracer(shape, size);
   NormalMap map;
   map.size = size;
   map.normal.assign(static_cast<std::size_t>(size) * size * 3, 0.0f);
   map.coverage.assign(static_cast<std::size_t>(size) * size, 0.0f);
   std::vector<CornerHit> corners(static_cast<std::size_t>(size + 1) * (size + 1));
   for (int j = 0; j <= size; ++j) {
+    const std::vector<Hit>& row = tracer.Row(0.0, j, size + 1);
     for (int i = 0; i <= size; ++i) {
-      const Hit hit = intersect(i, j);
-      corners[static_cast<std::size_t>(j) * (size + 1) + i] = {hit.hit, hit.t};
+      corners[static_cast<std::size_t>(j) * (size + 1) + i] = {row[i].hit, row[i].t};
     }
   }
+  std::vector<Hit> centres;
   for (int j = 0; j < size; ++j) {
     const CornerHit* top = &corners[static_cast<std::size_t>(j) * (size + 1)];
     const CornerHit* bottom = top + size + 1;
+    centres = tracer.Row(0.5, j + 0.5, size);
     for (int i = 0; i < size; ++i) {
       const std::size_t p = static_cast<std::size_t>(j) * size + i;
-      const Hit centre = intersect(i + 0.5, j + 0.5);
+      const Hit& centre = centres[i];
       bool edge = false;
       for (const CornerHit* corner : {&top[i], &top[i + 1], &bottom[i], &bottom[i + 1]}) {
         if (corner->hit != centre.hit ||
@@ -245,13 +316,10 @@ NormalMap TraceNormals(Shape shape, int size) {
       if (edge) {
         Vec3 sum{0.0, 0.0, 0.0};
         int hits = 0;
-        for (int b = 0; b < kEdgeSamples; ++b) {
-          for (int a = 0; a < kEdgeSamples; ++a) {
-            const Hit hit = intersect(i + (a + 0.5) / kEdgeSamples, j + (b + 0.5) / kEdgeSamples);
-            if (!hit.hit) continue;
-            sum = sum + hit.normal;
-            ++hits;
-          }
+        for (const Hit& hit : tracer.Samples(i, j)) {
+          if (!hit.hit) continue;
+          sum = sum + hit.normal;
+          ++hits;
         }
         coverage = static_cast<double>(hits) / (kEdgeSamples * kEdgeSamples);
         if (!centre.hit && hits > 0) normal = Normalize(sum);
@@ -306,9 +374,6 @@ std::unique_ptr<internal::TilePlan> TraceTile(const RenderOptions& options,
                                               const PrefilteredEnvironment* prefiltered) {
   using internal::PixelTerm;
   const int size = options.size;
-  const double scale = kObjectFraction * size;
-  const double half = 0.5 * size;
-  const Geometry geometry(options.shape);
   const bool uniform = options.lighting == Lighting::kUniform;
   const bool transparent = options.background == Background::kTransparent;
   const Vec3 view{0.0, 0.0, 1.0};
@@ -323,21 +388,6 @@ std::unique_ptr<internal::TilePlan> TraceTile(const RenderOptions& options,
     return environment.Backdrop(px / size, py / size);
   };
 
-  // Hits of the rays through pixel positions (px[k], py[k]); world holds the positions
-  // in world units.
-  const auto intersect = [&](const std::vector<double>& px, const std::vector<double>& py,
-                             std::vector<double> world[2], std::vector<Hit>* hits) {
-    world[0].resize(px.size());
-    world[1].resize(px.size());
-    for (std::size_t k = 0; k < px.size(); ++k) {
-      world[0][k] = (px[k] - half) / scale;
-      world[1][k] = (half - py[k]) / scale;
-    }
-    hits->resize(px.size());
-    geometry.Intersect(world[0].data(), world[1].data(), static_cast<int>(px.size()),
-                       hits->data());
-  };
-
   auto plan = std::make_unique<internal::TilePlan>();
   constexpr int kRows = internal::TilePlan::kRows;
   plan->pixels.resize(static_cast<std::size_t>(size) * size);
@@ -345,29 +395,22 @@ std::unique_ptr<internal::TilePlan> TraceTile(const RenderOptions& options,
   internal::ParallelFor(
       size, kRows, internal::ThreadCount(options.threads), [&](int row_begin, int row_end) {
         internal::TileBlock& block = plan->blocks[row_begin / kRows];
-        std::vector<double> px, py, world[2];
-        std::vector<Hit> row;
+        TileTracer tracer(options.shape, size);
         // Hits at the pixel corners of rows row_begin..row_end.
         const int stride = size + 1;
         std::vector<CornerHit> corners(static_cast<std::size_t>(row_end - row_begin + 1) * stride);
         for (int j = row_begin; j <= row_end; ++j) {
-          px.resize(stride);
-          py.assign(stride, j);
-          for (int i = 0; i <= size; ++i) px[i] = i;
-          intersect(px, py, world, &row);
+          const std::vector<Hit>& row = tracer.Row(0.0, j, stride);
           for (int i = 0; i <= size; ++i) {
             corners[static_cast<std::size_t>(j - row_begin) * stride + i] = {row[i].hit, row[i].t};
           }
         }
         std::vector<PixelTerm> hits;
-        std::vector<Hit> centres, samples;
+        std::vector<Hit> centres;
         for (int j = row_begin; j < row_end; ++j) {
           const CornerHit* top = &corners[static_cast<std::size_t>(j - row_begin) * stride];
           const CornerHit* bottom = top + stride;
-          px.resize(size);
-          py.assign(size, j + 0.5);
-          for (int i = 0; i < size; ++i) px[i] = i + 0.5;
-          intersect(px, py, world, &centres);
+          centres = tracer.Row(0.5, j + 0.5, size);
           for (int i = 0; i < size; ++i) {
             PixelTerm& pixel = plan->pixels[static_cast<std::size_t>(j) * size + i];
             const Hit& centre = centres[i];
@@ -387,15 +430,7 @@ std::unique_ptr<internal::TilePlan> TraceTile(const RenderOptions& options,
               }
               continue;
             }
-            px.clear();
-            py.clear();
-            for (int b = 0; b < kEdgeSamples; ++b) {
-              for (int a = 0; a < kEdgeSamples; ++a) {
-                px.push_back(i + (a + 0.5) / kEdgeSamples);
-                py.push_back(j + (b + 0.5) / kEdgeSamples);
-              }
-            }
-            intersect(px, py, world, &samples);
+            const std::vector<Hit>& samples = tracer.Samples(i, j);
             hits.clear();
             double background = 0.0;
             for (std::size_t k = 0; k < samples.size(); ++k) {
@@ -403,7 +438,7 @@ std::unique_ptr<internal::TilePlan> TraceTile(const RenderOptions& options,
               if (hit.hit) {
                 hits.push_back({static_cast<float>(cosine(hit)), static_cast<float>(light(hit))});
               } else if (!transparent) {
-                background += backdrop(px[k], py[k]);
+                background += backdrop(tracer.Px(k), tracer.Py(k));
               }
             }
             const int total = kEdgeSamples * kEdgeSamples;

@@ -39,7 +39,6 @@
 // outline). Render then only reads the material's colour at each term: every shape and
 // light costs about the same per image. mu and the weights are kept as float (relative
 // error below 1e-7, the precision of the image's own samples).
-
 #ifndef ALLOYCOLOR_RENDER_RENDERER_H_
 #define ALLOYCOLOR_RENDER_RENDERER_H_
 

@@ -1,7 +1,13 @@
-// Shading speed of a 1024 x 1024 sphere (gold, D65): from the XYZ table against cos(theta)
-// and from direct spectral evaluation of the Fresnel equations at every pixel, on one
-// thread and on all of them; plus building the table, the studio set, the ring, and the
-// 8-bit sRGB encoding. Counter "Mpixel/s": megapixels shaded per second of wall time.
+// Shading speed of 1024 x 1024 tiles of gold (D65): the sphere in uniform and studio light
+// and the ring in studio light, each
+//  - Table: Renderer::Render from the XYZ table, with the Renderer (its traced tile) made
+//    beforehand, as for every further image of a contact sheet or a session;
+//  - First: the Renderer made and the image rendered, as for a single picture;
+//  - Reference: the straightforward renderer of tests/reference_renderer.h, every pixel
+//    traced, lit and coloured on its own (one thread), from the same table;
+//  - Direct: spectral evaluation of the Fresnel equations at every sample;
+// on one thread and on all of them; plus building the table and the 8-bit sRGB encoding.
+// Counter "Mpixel/s": megapixels shaded per second of wall time.
 #include <benchmark/benchmark.h>
 
 #include <complex>
@@ -15,6 +21,7 @@
 #include "alloycolor/color/material_color.h"
 #include "alloycolor/render/renderer.h"
 #include "alloycolor/render/shading.h"
+#include "reference_renderer.h"
 
 namespace alloycolor::render {
 using namespace alloycolor::color;  // NOLINT(build/namespaces): colour types throughout
@@ -49,40 +56,44 @@ void SetPixelRate(benchmark::State& state, double pixels) {
       benchmark::Counter(pixels * state.iterations() / 1e6, benchmark::Counter::kIsRate);
 }
 
-int Threads(const benchmark::State& state) { return static_cast<int>(state.range(0)); }
+// The three scenes of the table: 0 sphere uniform, 1 sphere studio, 2 ring studio.
+RenderOptions Scene(int scene, int threads) {
+  return Options(scene == 0 ? Lighting::kUniform : Lighting::kStudio,
+                 scene == 2 ? Shape::kRing : Shape::kSphere, threads);
+}
 
-void BM_SphereUniformTable(benchmark::State& state) {
-  const Renderer renderer(D65(), Options(Lighting::kUniform, Shape::kSphere, Threads(state)));
+// args: scene, threads.
+void BM_Table(benchmark::State& state) {
+  const Renderer renderer(D65(), Scene(state.range(0), state.range(1)));
   const ReflectionTable table = renderer.Table(Gold());
   for (auto _ : state) benchmark::DoNotOptimize(renderer.Render(table));
   SetPixelRate(state, double(kSize) * kSize);
 }
 
-void BM_SphereUniformDirect(benchmark::State& state) {
-  const Renderer renderer(D65(), Options(Lighting::kUniform, Shape::kSphere, Threads(state)));
+void BM_First(benchmark::State& state) {
+  const RenderOptions options = Scene(state.range(0), state.range(1));
+  const ReflectionTable table = Renderer(D65(), options).Table(Gold());
+  for (auto _ : state) {
+    const Renderer renderer(D65(), options);
+    benchmark::DoNotOptimize(renderer.Render(table));
+  }
+  SetPixelRate(state, double(kSize) * kSize);
+}
+
+void BM_Reference(benchmark::State& state) {
+  const RenderOptions options = Scene(state.range(0), 1);
+  const ReflectionTable table = Renderer(D65(), options).Table(Gold());
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(alloycolor::testing::ReferenceRender(
+        D65(), options, [&table](double mu) { return table.At(mu); }));
+  }
+  SetPixelRate(state, double(kSize) * kSize);
+}
+
+void BM_Direct(benchmark::State& state) {
+  const Renderer renderer(D65(), Scene(state.range(0), state.range(1)));
   const DirectReflection direct = renderer.Direct(Gold());
   for (auto _ : state) benchmark::DoNotOptimize(renderer.Render(direct));
-  SetPixelRate(state, double(kSize) * kSize);
-}
-
-void BM_SphereStudioTable(benchmark::State& state) {
-  const Renderer renderer(D65(), Options(Lighting::kStudio, Shape::kSphere, Threads(state)));
-  const ReflectionTable table = renderer.Table(Gold());
-  for (auto _ : state) benchmark::DoNotOptimize(renderer.Render(table));
-  SetPixelRate(state, double(kSize) * kSize);
-}
-
-void BM_SphereStudioDirect(benchmark::State& state) {
-  const Renderer renderer(D65(), Options(Lighting::kStudio, Shape::kSphere, Threads(state)));
-  const DirectReflection direct = renderer.Direct(Gold());
-  for (auto _ : state) benchmark::DoNotOptimize(renderer.Render(direct));
-  SetPixelRate(state, double(kSize) * kSize);
-}
-
-void BM_RingStudioTable(benchmark::State& state) {
-  const Renderer renderer(D65(), Options(Lighting::kStudio, Shape::kRing, Threads(state)));
-  const ReflectionTable table = renderer.Table(Gold());
-  for (auto _ : state) benchmark::DoNotOptimize(renderer.Render(table));
   SetPixelRate(state, double(kSize) * kSize);
 }
 
@@ -103,23 +114,28 @@ void BM_EncodeSRGB8(benchmark::State& state) {
 
 const int kAllThreads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 
-BENCHMARK(BM_SphereUniformTable)
-    ->Arg(1)
-    ->Arg(kAllThreads)
+void SceneArgs(benchmark::internal::Benchmark* b) {
+  for (int scene = 0; scene < 3; ++scene) {
+    b->Args({scene, 1});
+    if (kAllThreads > 1) b->Args({scene, kAllThreads});
+  }
+}
+
+BENCHMARK(BM_Table)->Apply(SceneArgs)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_First)->Apply(SceneArgs)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_Reference)
+    ->Args({0, 1})
+    ->Args({1, 1})
+    ->Args({2, 1})
+    ->Iterations(1)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
-BENCHMARK(BM_SphereUniformDirect)
-    ->Arg(1)
-    ->Arg(kAllThreads)
+BENCHMARK(BM_Direct)
+    ->Args({0, kAllThreads})
+    ->Args({1, kAllThreads})
+    ->Iterations(1)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
-BENCHMARK(BM_SphereStudioTable)
-    ->Arg(1)
-    ->Arg(kAllThreads)
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime();
-BENCHMARK(BM_SphereStudioDirect)->Arg(kAllThreads)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_RingStudioTable)->Arg(kAllThreads)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_BuildTable)->Arg(0)->Arg(20)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_EncodeSRGB8)->Unit(benchmark::kMillisecond);
 

@@ -1,14 +1,34 @@
 #!/usr/bin/env bash
-# Benchmarks: colours per second through each model (bench/colour_bench.cc), smooth-fit
-# time against data size (bench/fit_bench.cc), and the end-to-end `alloycolor sweep` of a
-# million compositions with its output. Builds build/ (Release) first. Prints the machine
-# and the figures, with ratios to the straightforward implementation ("naive").
-#   scripts/bench.sh [--quick]      (--quick: shorter runs, less stable figures)
+# Benchmarks, each figure beside the straightforward implementation measured in the same
+# run: colours per second through each model (bench/colour_bench.cc), rendering 1024 x 1024
+# tiles (bench/render_bench.cc), the end-to-end `alloycolor sweep` of a million
+# compositions, smooth-fit time against data size (bench/fit_bench.cc), and the wall time of
+# `alloycolor validate --loo --methods all` on every bundled data set. Builds build/
+# (Release) first. Prints the machine, its load, and the figures with ratios to the
+# straightforward implementation ("naive") or the issue's target where there is none.
+#   scripts/bench.sh [--quick]      (--quick: shorter runs, less stable figures, no direct
+#                                    rendering, each validation stopped after 5 s instead of
+#                                    20 s and not repeated without auto)
 # BUILD_DIR=dir uses an existing Release build there instead of setting up build/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 min_time=1.0
-[[ ${1:-} == --quick ]] && min_time=0.2
+sweep_runs=3
+fit_repetitions=5
+fit_min_time=0.5
+exact_steps=100000
+validate_limit=20
+quick=0
+if [[ ${1:-} == --quick ]]; then
+  quick=1
+  min_time=0.2
+  sweep_runs=1
+  fit_repetitions=2
+  fit_min_time=0.05
+  exact_steps=20000
+  validate_limit=5
+fi
+started=$EPOCHREALTIME
 if [[ -z ${BUILD_DIR:-} ]]; then
   scripts/setup.sh >/dev/null
   BUILD_DIR=build
@@ -17,7 +37,8 @@ out=$(mktemp -d)
 part=0
 trap 'rm -rf "$out"' EXIT
 
-echo "== machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//')"
+echo "== machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//'), $(awk '/MemTotal/ { printf "%.0f GB", $2 / 1048576 }' /proc/meminfo)"
+echo "== load at the start: $(uptime | sed 's/.*load average/load average/') (other work shares the cores)"
 
 echo "== colours per second (Au-Ag, D65, 2-degree observer, 5 nm grid; one core)"
 # One run per set of counters (the CSV reporter wants the same counters on every row).
@@ -69,12 +90,44 @@ awk -F, '
     printf ")\n"
   }' "$out"/colour-*.csv
 
-echo "== alloycolor sweep end to end: 1,000,000 compositions written to /dev/null (best of 3)"
+echo "== rendering a 1024 x 1024 tile of gold (D65, transparent background): Mpixel/s of wall time"
+render_filter='BM_(Table|First|Reference|Direct)/'
+[[ $quick == 0 ]] || render_filter='BM_(Table|First|Reference)/'
+"$BUILD_DIR"/bench/render_bench --benchmark_min_time="$min_time" --benchmark_format=csv \
+  --benchmark_filter="$render_filter" >"$out/render.csv" 2>/dev/null
+awk -F, -v threads="$(nproc)" '
+  FNR == 1 { for (i = 1; i <= NF; ++i) { h = $i; gsub(/"/, "", h); col[h] = i }; next }
+  {
+    name = $1; gsub(/"/, "", name)
+    split(name, part, "/")
+    kind = part[1]; sub(/^BM_/, "", kind)
+    rate[kind, part[2], part[3]] = $col["Mpixel/s"]
+    # Mpixel per second of processor time of the main thread (one thread: per core).
+    cpu[kind, part[2], part[3]] = 1.048576 * 1000 / $col["cpu_time"]
+  }
+  function f(v) { return v == "" ? "-" : sprintf("%.3g", v) }
+  END {
+    scene[0] = "sphere, uniform light"; scene[1] = "sphere, studio light"; scene[2] = "ring, studio light"
+    printf "%-22s %18s %10s %14s %16s %14s %11s\n", "scene", "per image: 1 core", "(cpu)", threads " threads", "first image 1/" threads, "straightforw.", "direct " threads
+    for (s = 0; s < 3; ++s) {
+      printf "%-22s %10s (%4.0fx) %10s %14s %16s %14s %11s\n", scene[s], f(rate["Table", s, 1]),
+        rate["Table", s, 1] / rate["Reference", s, 1], f(cpu["Table", s, 1]), f(rate["Table", s, threads]),
+        f(rate["First", s, 1]) " / " f(rate["First", s, threads]), f(rate["Reference", s, 1]),
+        f(rate["Direct", s, threads])
+    }
+    printf "(per image: Renderer::Render with the tile traced when the Renderer was made; first image: the\n"
+    printf " Renderer made as well; (cpu): per second of processor time; straightforward: every pixel traced, lit\n"
+    printf " and coloured on its own, one thread (tests/reference_renderer.h), ratios to it; direct: spectral\n"
+    printf " Fresnel at every sample. Sphere / ring, studio light, one core: per image %.2f, first image %.2f)\n",
+      rate["Table", 1, 1] / rate["Table", 2, 1], rate["First", 1, 1] / rate["First", 2, 1]
+  }' "$out/render.csv"
+
+echo "== alloycolor sweep end to end: 1,000,000 compositions written to /dev/null (best of $sweep_runs)"
 ac=$BUILD_DIR/app/alloycolor
 $ac fit --data Au-Ag --quiet --no-covariance --out "$out/smooth.json"
 sweep_time() {
   local best="" start end
-  for _ in 1 2 3; do
+  for ((run = 0; run < sweep_runs; ++run)); do
     start=$EPOCHREALTIME
     "$ac" sweep --quiet "$@" >/dev/null
     end=$EPOCHREALTIME
@@ -93,11 +146,16 @@ for spec in "smooth:--model $out/smooth.json" "paper:--data Au-Ag --method paper
   printf '%-11s csv %6.2f s   json %6.2f s\n' "$name" "$csv" "$json"
 done
 # shellcheck disable=SC2086
-printf '%-11s csv %6.2f s   (--exact: every composition evaluated)\n' "smooth" \
-  "$(sweep_time --model "$out/smooth.json" --steps 1000000 --exact)"
+# --exact evaluates every composition: timed on exact_steps of them, scaled to a million.
+exact=$(sweep_time --model "$out/smooth.json" --steps "$exact_steps" --exact)
+awk -v t="$exact" -v n="$exact_steps" 'BEGIN {
+  printf "%-11s csv %6.2f s   (--exact: every composition evaluated; %d timed, %.3g/s)\n", "smooth", t * 1e6 / n, n, n / t
+}'
 
-echo "== smooth fit time against data size (degree 2, no covariance; median of 5; [Ceres iterations])"
-"$BUILD_DIR"/bench/fit_bench --benchmark_format=csv 2>/dev/null | awk -F, '
+echo "== smooth fit time against data size (degree 2, no covariance; median of $fit_repetitions; [Ceres iterations])"
+"$BUILD_DIR"/bench/fit_bench --benchmark_format=csv --benchmark_repetitions="$fit_repetitions" \
+  --benchmark_min_time="$fit_min_time" \
+  2>/dev/null | awk -F, '
   NR == 1 { for (i = 1; i <= NF; ++i) { h = $i; gsub(/"/, "", h); col[h] = i }; next }
   $1 ~ /_median"?$/ {
     name = $1; gsub(/"/, "", name); sub(/_median$/, "", name); sub(/^BM_/, "", name)
@@ -113,6 +171,32 @@ echo "== smooth fit time against data size (degree 2, no covariance; median of 5
     printf "%-24s %8.1f ms [%3d] %8.1f ms [%3d] %8.1f ms [%3d]\n", "samples 3/6/11", s[3], si[3], s[6], si[6], s[11], si[11]
     printf "%-24s %12.2f ms %15.2f ms %15.2f ms   (%.1fx, %.1fx)\n", "wavelengths, per iter.", w[1] / wi[1], w[2] / wi[2], w[4] / wi[4], (w[2] / wi[2]) / (w[1] / wi[1]), (w[4] / wi[4]) / (w[1] / wi[1])
     printf "%-24s %12.2f ms %15.2f ms %15.2f ms   (%.1fx, %.1fx)\n", "samples, per iter.", s[3] / si[3], s[6] / si[6], s[11] / si[11], (s[6] / si[6]) / (s[3] / si[3]), (s[11] / si[11]) / (s[3] / si[3])
-    printf "default fit (cross-validated degree, covariance; 11 samples, 95 nodes): %.0f ms\n", d
+    printf "default fit (cross-validated degree, covariance; 11 samples, 95 nodes): %.0f ms (target 100 ms: %.1fx)\n", d, d / 100
   }'
 
+echo "== leave-one-out validation with every method (alloycolor validate --loo; one run each; stopped after ${validate_limit} s)"
+# Wall time of one validation, or "> limit" when it was stopped.
+validate_time() {
+  local start end status=0
+  start=$EPOCHREALTIME
+  timeout "$validate_limit" "$ac" validate --loo --quiet --out "$out/validate" "$@" \
+    >/dev/null 2>&1 || status=$?
+  end=$EPOCHREALTIME
+  awk -v s="$start" -v e="$end" -v st="$status" -v limit="$validate_limit" 'BEGIN {
+    if (st == 124) printf "> %d s", limit
+    else if (st != 0) printf "failed (%d)", st
+    else printf "%.2f s", e - s
+  }'
+}
+printf '%-34s %18s %28s   %s\n' "data set" "--methods all" "every method but auto" "(target 5 s)"
+for manifest in data/Au-Ag/dataset.json data/Cu-Zn/dataset.json data/Cu-Zn/dataset-werner-zn.json \
+                data/Nb-Sn/dataset.json; do
+  [[ -f $manifest ]] || continue
+  all=$(validate_time --data "$manifest" --methods all)
+  rest=-
+  if [[ $quick == 0 ]]; then
+    rest=$(validate_time --data "$manifest" --methods paper,eps-linear,eps-pchip,eps-spline,smooth,physical)
+  fi
+  printf '%-34s %18s %28s\n' "$manifest" "$all" "$rest"
+done
+echo "== load at the end: $(uptime | sed 's/.*load average/load average/'); bench.sh took $(awk -v s="$started" -v e="$EPOCHREALTIME" 'BEGIN { printf "%.0f", e - s }') s"

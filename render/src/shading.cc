@@ -105,15 +105,18 @@ double SmoothStep(double edge0, double edge1, double x) {
 }
 
 // A rectangular softbox facing the origin: centre direction, its own right and up axes,
-// half-extents as tangents of angles, softened at the edges.
+// half-extents as tangents of angles, softened at the edges. Outside the soft edges
+// (tangent a >= half + soft) it is 0, found before dividing.
 double SoftBox(const Vec3& w, const Vec3& centre, const Vec3& right, const Vec3& up,
                double half_width, double half_height, double soft) {
   const double d = Dot(w, centre);
   if (d <= 0.0) return 0.0;
-  const double a = std::abs(Dot(w, right) / d);
-  const double b = std::abs(Dot(w, up) / d);
-  return SmoothStep(half_width + soft, half_width - soft, a) *
-         SmoothStep(half_height + soft, half_height - soft, b);
+  const double x = std::abs(Dot(w, right));
+  if (x >= (half_width + soft) * d) return 0.0;
+  const double y = std::abs(Dot(w, up));
+  if (y >= (half_height + soft) * d) return 0.0;
+  return SmoothStep(half_width + soft, half_width - soft, x / d) *
+         SmoothStep(half_height + soft, half_height - soft, y / d);
 }
 
 struct StudioSet {

@@ -98,6 +98,8 @@ class ReflectionTable {
   }
   int size() const { return last_ + 1; }
   double roughness() const { return alpha_; }
+  // X, Y, Z at the nodes mu = i / (size - 1), node by node.
+  const std::vector<double>& nodes() const { return xyz_; }
 
  private:
   std::vector<double> xyz_;  // X, Y, Z at mu = i / (size - 1)

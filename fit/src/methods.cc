@@ -201,7 +201,10 @@ void EstimatePredictionError(const std::string& method, const Dataset& dataset,
       }
     }
     if (ratios > 0 && ratio_sq > 0) {
-      error.calibration = std::clamp(std::sqrt(ratio_sq / ratios), 1e-3, 1e3);
+      // The RMS ratio from f folds, widened by sqrt(1 + 1/f) as a prediction interval is
+      // for the spread estimated from f values.
+      error.calibration =
+          std::clamp(std::sqrt(ratio_sq / ratios * (1.0 + 1.0 / ratios)), 1e-3, 1e3);
     }
   }
   model->set_prediction_error(std::move(error));

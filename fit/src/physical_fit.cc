@@ -11,6 +11,9 @@
 #include "alloycolor/fit/physical_costs.h"
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/grid.h"
+#include "alloycolor/core/io.h"
+#include "alloycolor/core/progress.h"
+#include "alloycolor/core/text.h"
 #include "alloycolor/model/optics.h"
 #include "alloycolor/core/units.h"
 
@@ -592,7 +595,85 @@ SampleFit SampleMisfit(const PhysicalModel& model, const SampleData& s) {
 
 }  // namespace
 
+namespace {
+
+PhysicalFitResult FitPhysicalAtDegree(const Dataset& dataset, const PhysicalFitOptions& options);
+
+// n and k above this (or above 1.5 times the largest of the data, for data that go
+// higher, as metals do in the infrared) are a resonance the data do not have.
+constexpr double kMaxPhysicalIndex = 50;
+
+// Where the fitted model leaves physics inside its ranges, checked at 101 compositions
+// and 201 wavelengths: eps2 < 0 (not passive), or n or k beyond the limit above. Empty
+// when it stays physical.
+std::string Unphysical(const PhysicalModel& model, const Dataset& dataset) {
+  std::vector<double> grid;
+  for (int j = 0; j <= 200; ++j) {
+    grid.push_back(model.lambda_min_nm() + (model.lambda_max_nm() - model.lambda_min_nm()) * j / 200.0);
+  }
+  double data_max = 0;
+  for (const Sample& s : dataset.samples) {
+    for (double l : grid) {
+      const std::complex<double> nk = NkAt(s.nk, l);
+      data_max = std::max({data_max, nk.real(), nk.imag()});
+    }
+  }
+  const double limit = std::max(kMaxPhysicalIndex, 1.5 * data_max);
+  for (int i = 0; i <= 100; ++i) {
+    const double x = model.x_min() + (model.x_max() - model.x_min()) * i / 100.0;
+    const std::vector<std::complex<double>> eps = model.Permittivity(x, grid);
+    for (size_t j = 0; j < grid.size(); ++j) {
+      const std::complex<double> nk = std::sqrt(eps[j]);
+      std::ostringstream where;
+      where << " at x = " << FormatNumber(x) << ", " << FormatNumber(grid[j]) << " nm";
+      if (!std::isfinite(eps[j].real()) || !std::isfinite(eps[j].imag())) {
+        return "gives a non-finite eps" + where.str();
+      }
+      if (eps[j].imag() < -1e-9 * std::abs(eps[j])) {
+        return "is not passive (eps2 = " + FormatNumber(eps[j].imag()) + ")" + where.str();
+      }
+      if (nk.real() > limit || nk.imag() > limit) {
+        return "has a resonance (n = " + FormatNumber(nk.real()) + ", k = " +
+               FormatNumber(nk.imag()) + ", limit " + FormatNumber(limit) + ")" + where.str();
+      }
+    }
+  }
+  return "";
+}
+
+}  // namespace
+
+// The fit at options.degree; when it leaves physics inside its range (Unphysical) or does
+// not converge, again one degree lower (a lower degree bends the parameters less between
+// the samples), down to 1; at degree 1 a fit that is still unphysical is an error.
 PhysicalFitResult FitPhysical(const Dataset& dataset, const PhysicalFitOptions& options) {
+  PhysicalFitOptions o = options;
+  std::vector<std::string> notes;
+  for (;;) {
+    PhysicalFitResult result = FitPhysicalAtDegree(dataset, o);
+    const std::string problem = Unphysical(*result.model, dataset);
+    const bool converged = result.model->fit_summary().converged;
+    const int degree = result.model->fit_summary().degree;
+    if ((problem.empty() && converged) || degree <= 1) {
+      if (!problem.empty()) {
+        throw Error(dataset.manifest_path + ": the physical fit " + problem +
+                    (notes.empty() ? "" : " (lower degrees tried too)") +
+                    "; use another method (eps-pchip, smooth)");
+      }
+      result.model->AddWarnings(notes);
+      return result;
+    }
+    notes.push_back("the physical fit at degree " + std::to_string(degree) + " " +
+                    (problem.empty() ? std::string("did not converge") : problem) +
+                    "; refitted at degree " + std::to_string(degree - 1));
+    Report(options.progress, notes.back());
+    o.degree = degree - 1;
+  }
+}
+
+namespace {
+
+PhysicalFitResult FitPhysicalAtDegree(const Dataset& dataset, const PhysicalFitOptions& options) {
   if (dataset.samples.size() < 2) {
     throw Error(dataset.manifest_path + ": the physical fit needs at least two compositions");
   }
@@ -828,5 +909,7 @@ PhysicalFitResult FitPhysical(const Dataset& dataset, const PhysicalFitOptions& 
   result.model->AddWarnings(warnings);
   return result;
 }
+
+}  // namespace
 
 }  // namespace alloycolor::fit

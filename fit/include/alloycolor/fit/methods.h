@@ -61,8 +61,8 @@ const std::vector<MethodBuilder>& Builders();
 // rank) is held out in turn, the method built on the rest predicts it, and the relative
 // eps errors give scale[j] = RMS over folds of error / B (PredictionError); the
 // calibration then makes the held-out CIEDE2000 errors of the folds, divided by their
-// one-sigma colour uncertainty, have an RMS of 1 (colorimeter and visible data needed; 1
-// otherwise). Throws Error for an unknown method (listing the known
+// one-sigma colour uncertainty, have an RMS of 1, widened by sqrt(1 + 1/f) for f folds
+// (colorimeter and visible data needed; 1 otherwise). Throws Error for an unknown method (listing the known
 // ones), a bad setting (naming the option) or data the method cannot use.
 std::unique_ptr<AlloyModel> BuildModel(const std::string& method, const Dataset& dataset,
                                        const FitSettings& settings = {});

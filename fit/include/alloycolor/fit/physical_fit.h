@@ -72,6 +72,10 @@ struct PhysicalFitResult {
 // Throws Error when the data set has fewer than two compositions, when the samples share
 // no wavelength range or do not cover the requested one (naming the sample), or for a
 // bad option (naming it).
+// A fit that leaves physics anywhere inside its composition and wavelength ranges (eps2 < 0,
+// n or k above 50 or 1.5 times the data's largest) or does not converge is refitted one
+// degree lower, down to 1, with a warning naming what happened; still unphysical at
+// degree 1 it is an Error naming where.
 PhysicalFitResult FitPhysical(const Dataset& dataset, const PhysicalFitOptions& options);
 
 }  // namespace alloycolor::fit

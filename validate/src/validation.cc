@@ -312,13 +312,17 @@ ValidationReport ComputeValidation(const Dataset& dataset,
       return nullptr;
     }
   };
-  // First, every method until it builds on some split: a method that builds on none (an
-  // unknown name, say) is refused before the long work.
+  // First, every method until it builds on some split: when none builds on any split
+  // there is nothing to report, and the first method's error is the answer. A method
+  // that fails everywhere beside others that work is reported as failed in each split
+  // (the physical fit refusing unphysical data, say).
+  bool any_method = false;
   for (const std::string& method : options.methods) {
     bool any = false;
     for (size_t s = 0; s < report.splits.size() && !any; ++s) any = build(method, s) != nullptr;
-    if (!any) throw Error(failed[{method, 0}]);
+    any_method |= any;
   }
+  if (!any_method) throw Error(failed[{options.methods.front(), 0}]);
   for (const std::string& method : options.methods) {
     for (size_t s = 0; s < report.splits.size(); ++s) {
       SplitResult& split = report.splits[s];

@@ -185,7 +185,7 @@ void Run(const SweepOptions& o) {
     const double x = i == 0 ? from : i == o.steps - 1 ? to : from + span * (i / last);
     const color::XYZ xyz = table ? sweep.XYZAt(x) : sweep.ExactXYZ(x);
     if (!std::isfinite(xyz.X) || !std::isfinite(xyz.Y) || !std::isfinite(xyz.Z)) {
-      throw Error("composition x = " + Describe(x) + ": the " + model->method() +
+      throw Error(source + ": composition x = " + Describe(x) + ": the " + model->method() +
                   " model gives no finite colour");
     }
     const color::Lab lab = color::LabFromXYZ(xyz, white);

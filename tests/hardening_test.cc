@@ -305,11 +305,10 @@ double SecondsOf(const std::function<void()>& f) {
 TEST(ModelFiles, AnUnusableModelIsRefusedByEveryCommand) {
   const std::string dir = MakeTempDir();
   const std::vector<std::pair<std::string, std::string>> models = {
-      {"smooth-grid-past-range.model.json", "parameters.lambda_nm"},
+      {"smooth-grid-short-of-range.model.json", "parameters.lambda_nm"},
       {"paper-sample-short.model.json", "parameters.samples[1].lambda_nm"},
       {"lambda-range-1e17.model.json", "lambda_range_nm"},
       {"physical-eps-zero.model.json", "no usable permittivity"},
-      {"smooth-covariance-overflow.model.json", "parameters.covariance"},
       {"physical-covariance-overflow.model.json", "parameters.covariance"}};
   for (const auto& [name, field] : models) {
     const std::string model = BadInput(name);
@@ -331,34 +330,65 @@ TEST(ModelFiles, AnUnusableModelIsRefusedByEveryCommand) {
   EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 0);
 }
 
-// A sweep streams millions of rows; one that fails after 64 MiB of them (a model
-// extrapolated until its ln gamma overflows, past x = 0.889) shows none, on standard
-// output or in --out; one that succeeds shows them all, in order.
-TEST(Streams, ASweepIsAllOrNothingPast64MiB) {
-  const std::string model = TestsDir() + "/hardening/smooth-narrow-x-range.model.json";
-  const std::vector<std::string> sweep = {"sweep",  "--model", model,    "--extrapolate",
-                                          "--exact", "--format", "json", "--steps",
-                                          "800000",  "--quiet",  "--from", "0"};
-  auto with = [&](std::vector<std::string> extra) {
-    std::vector<std::string> args = sweep;
-    args.insert(args.end(), extra.begin(), extra.end());
-    return args;
-  };
-  // Fails at x = 0.889: some 710,000 rows (78 MB) before it.
-  ExpectOneError(RunProgram(with({"--to", "1"})), {model, "x = 0.889", "no finite colour"});
+// A sweep is all or nothing. A model that cannot be evaluated part-way (the physical
+// model, its x range narrowed by hand to [0, 0.3] and an E0 given a P6 term, extrapolated:
+// E0 reaches 0 near x = 0.77) prints no row, on standard output or in --out.
+TEST(Streams, ASweepThatFailsPartWayShowsNoRow) {
+  const std::string model = TestsDir() + "/hardening/physical-narrow-x-range.model.json";
+  const std::vector<std::string> sweep = {"sweep",   "--model", model,  "--extrapolate",
+                                          "--exact", "--steps", "20000", "--from",
+                                          "0",       "--to",    "1",     "--quiet"};
+  ExpectOneError(RunProgram(sweep), {model, "no usable permittivity"});
   const std::string dir = MakeTempDir();
-  const std::string out = dir + "/sweep.json";
+  const std::string out = dir + "/sweep.csv";
   WriteText(out, "old\n");
-  ExpectOneError(RunProgram(with({"--to", "1", "--out", out})), {model, "no finite colour"});
+  std::vector<std::string> args = sweep;
+  args.insert(args.end(), {"--out", out});
+  ExpectOneError(RunProgram(args), {model, "no usable permittivity"});
   EXPECT_EQ(ReadBytes(out), "old\n");
   EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
-  // Up to 0.85 it succeeds: every row, complete JSON, the same bytes either way.
-  const RunResult r = RunProgram(with({"--to", "0.85"}));
+  // In range it works.
+  const RunResult r = RunProgram({"sweep", "--model", model, "--steps", "5", "--exact"});
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(CountLines(r.out), 6);
+}
+
+// The program run with $TMPDIR set (RunProgram itself needs the caller's): through the
+// shell, arguments without quotes or spaces.
+RunResult RunWithTmpdir(const std::string& tmpdir, const std::vector<std::string>& args) {
+  const std::string files = MakeTempDir();
+  std::string command = "TMPDIR='" + tmpdir + "' '" + std::string(ALLOYCOLOR_BINARY) + "'";
+  for (const std::string& a : args) command += " '" + a + "'";
+  command += " >'" + files + "/out' 2>'" + files + "/err'";
+  const int status = std::system(command.c_str());
+  RunResult r;
+  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = ReadBytes(files + "/out");
+  r.err = ReadBytes(files + "/err");
+  fs::remove_all(files);
+  return r;
+}
+
+// Past 64 MiB standard output is held in an unlinked file in $TMPDIR until the sweep is
+// complete: a sweep that cannot hold it (no such folder) prints nothing; one that can
+// prints every row, complete JSON, the same bytes as --out.
+TEST(Streams, ASweepPast64MiBIsHeldUntilComplete) {
+  const std::vector<std::string> sweep = {"sweep",   "--data",   "Au-Ag", "--method",
+                                          "eps-linear", "--exact", "--format", "json",
+                                          "--steps", "700000",   "--quiet"};
+  const std::string dir = MakeTempDir();
+  ExpectOneError(RunWithTmpdir(dir + "/no-such-folder", sweep),
+                 {"standard output", "64 MiB", "no-such-folder"});
+  const RunResult r = RunWithTmpdir(dir, sweep);
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_GT(r.out.size(), std::size_t{64} << 20);
   EXPECT_EQ(r.out.substr(r.out.size() - 4), "\n]}\n");
-  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 800000 + 2);  // head, rows, end
-  ASSERT_EQ(RunProgram(with({"--to", "0.85", "--out", out})).status, 0);
+  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 700000 + 2);  // head, rows, end
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 0);
+  const std::string out = dir + "/sweep.json";
+  std::vector<std::string> args = sweep;
+  args.insert(args.end(), {"--out", out});
+  ASSERT_EQ(RunProgram(args).status, 0);
   EXPECT_TRUE(ReadBytes(out) == r.out);
   EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
 }
@@ -366,9 +396,9 @@ TEST(Streams, ASweepIsAllOrNothingPast64MiB) {
 // The colour table of `color` is all or nothing too: a list whose last composition cannot
 // be coloured prints no row.
 TEST(Streams, AColourListThatFailsPrintsNothing) {
-  const std::string model = TestsDir() + "/hardening/smooth-narrow-x-range.model.json";
+  const std::string model = TestsDir() + "/hardening/physical-narrow-x-range.model.json";
   for (const char* format : {"--quiet", "--json"}) {
-    ExpectOneError(RunProgram({"color", "--model", model, "--extrapolate", "--x", "0,0.5,0.95",
+    ExpectOneError(RunProgram({"color", "--model", model, "--extrapolate", "--x", "0,0.2,0.95",
                                format}),
                    {model, "x = 0.95"});
   }

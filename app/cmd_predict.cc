@@ -78,8 +78,7 @@ void Run(const PredictOptions& o, CLI::App* cmd) {
                         (n_sigma.empty() || (std::isfinite(n_sigma[i]) && std::isfinite(k_sigma[i])));
     if (!finite) {
       throw Error(model->source() + ": x = " + FormatNumber(x) + ", " + FormatNumber(grid[i]) +
-                  " nm: the " +
-                  model->method() + " model gives no finite n, k" +
+                  " nm: the " + model->method() + " model gives no finite n, k" +
                   (n_sigma.empty() ? "" : " or sigma") + " here");
     }
   }

@@ -14,11 +14,11 @@
 #include <string_view>
 #include <vector>
 
+#include "alloycolor/color/colorimetry.h"
+#include "alloycolor/color/sweep.h"
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/output.h"
 #include "alloycolor/core/text.h"
-#include "alloycolor/color/colorimetry.h"
-#include "alloycolor/color/sweep.h"
 #include "common.h"
 
 namespace alloycolor::app {

@@ -335,7 +335,7 @@ TEST(ModelFiles, AnUnusableModelIsRefusedByEveryCommand) {
 // E0 reaches 0 near x = 0.77) prints no row, on standard output or in --out.
 TEST(Streams, ASweepThatFailsPartWayShowsNoRow) {
   const std::string model = TestsDir() + "/hardening/physical-narrow-x-range.model.json";
-  const std::vector<std::string> sweep = {"sweep",   "--model", model,  "--extrapolate",
+  const std::vector<std::string> sweep = {"sweep",   "--model", model,   "--extrapolate",
                                           "--exact", "--steps", "20000", "--from",
                                           "0",       "--to",    "1",     "--quiet"};
   ExpectOneError(RunProgram(sweep), {model, "no usable permittivity"});
@@ -373,9 +373,9 @@ RunResult RunWithTmpdir(const std::string& tmpdir, const std::vector<std::string
 // complete: a sweep that cannot hold it (no such folder) prints nothing; one that can
 // prints every row, complete JSON, the same bytes as --out.
 TEST(Streams, ASweepPast64MiBIsHeldUntilComplete) {
-  const std::vector<std::string> sweep = {"sweep",   "--data",   "Au-Ag", "--method",
+  const std::vector<std::string> sweep = {"sweep",      "--data",  "Au-Ag",    "--method",
                                           "eps-linear", "--exact", "--format", "json",
-                                          "--steps", "700000",   "--quiet"};
+                                          "--steps",    "700000",  "--quiet"};
   const std::string dir = MakeTempDir();
   ExpectOneError(RunWithTmpdir(dir + "/no-such-folder", sweep),
                  {"standard output", "64 MiB", "no-such-folder"});
@@ -398,9 +398,9 @@ TEST(Streams, ASweepPast64MiBIsHeldUntilComplete) {
 TEST(Streams, AColourListThatFailsPrintsNothing) {
   const std::string model = TestsDir() + "/hardening/physical-narrow-x-range.model.json";
   for (const char* format : {"--quiet", "--json"}) {
-    ExpectOneError(RunProgram({"color", "--model", model, "--extrapolate", "--x", "0,0.2,0.95",
-                               format}),
-                   {model, "x = 0.95"});
+    ExpectOneError(
+        RunProgram({"color", "--model", model, "--extrapolate", "--x", "0,0.2,0.95", format}),
+        {model, "x = 0.95"});
   }
 }
 
@@ -443,18 +443,19 @@ TEST(Bounds, ManyValuesAndOddInputsAreRefusedAtOnce) {
                  {"nul-in-number.yml:5", "NUL"});
   ExpectOneError(RunProgram({"color", "--nk", BadInput("nul-in-number.csv")}),
                  {"nul-in-number.csv:3"});
-  ExpectOneError(RunProgram({"color", "--data", BadInput("nul-in-file-name.dataset.json"),
-                             "--x", "0.5"}),
-                 {"NUL"});
+  ExpectOneError(
+      RunProgram({"color", "--data", BadInput("nul-in-file-name.dataset.json"), "--x", "0.5"}),
+      {"NUL"});
   ExpectOneError(RunProgram({"fit", "--data", "Au-Ag", "--method", "smooth", "--degree", "1.5",
                              "--out", MakeTempDir() + "/m.json"}),
                  {"--degree"});
-  ExpectOneError(RunProgram({"color", "--model", BadInput("system-au-au.model.json"), "--x",
-                             "0.5"}),
-                 {"system-au-au.model.json", "both 'Au'"});
-  for (const char* manifest : {"same-file-twice.dataset.json", "same-spectrum-twice.dataset.json"}) {
-    ExpectOneError(RunProgram({"fit", "--data", BadInput(manifest), "--method", "paper",
-                               "--out", MakeTempDir() + "/m.json"}),
+  ExpectOneError(
+      RunProgram({"color", "--model", BadInput("system-au-au.model.json"), "--x", "0.5"}),
+      {"system-au-au.model.json", "both 'Au'"});
+  for (const char* manifest :
+       {"same-file-twice.dataset.json", "same-spectrum-twice.dataset.json"}) {
+    ExpectOneError(RunProgram({"fit", "--data", BadInput(manifest), "--method", "paper", "--out",
+                               MakeTempDir() + "/m.json"}),
                    {manifest, "one"});
   }
 }
@@ -464,16 +465,16 @@ TEST(Bounds, ManyValuesAndOddInputsAreRefusedAtOnce) {
 TEST(OutputWriter, ABadOutputIsRefusedBeforeTheWork) {
   const std::string dir = MakeTempDir();
   const std::string model = dir + "/m.png";
-  ASSERT_EQ(RunProgram({"fit", "--data", "Au-Ag", "--method", "paper", "--out", model, "--quiet"})
-                .status,
-            0);
+  ASSERT_EQ(
+      RunProgram({"fit", "--data", "Au-Ag", "--method", "paper", "--out", model, "--quiet"}).status,
+      0);
   const std::string bytes = ReadBytes(model);
-  ExpectOneError(RunProgram({"render", "--model", model, "--x", "0.5", "--size", "8", "--out",
-                             model}),
-                 {"one of this command's inputs"});
-  ExpectOneError(RunProgram({"render", "--model", model, "--x", "0.5", "--size", "8", "--out",
-                             "/dev/null"}),
-                 {"/dev/null"});
+  ExpectOneError(
+      RunProgram({"render", "--model", model, "--x", "0.5", "--size", "8", "--out", model}),
+      {"one of this command's inputs"});
+  ExpectOneError(
+      RunProgram({"render", "--model", model, "--x", "0.5", "--size", "8", "--out", "/dev/null"}),
+      {"/dev/null"});
   ExpectOneError(RunProgram({"explore", "--model", model, "--out", "/dev/null"}), {"/dev/null"});
   EXPECT_EQ(ReadBytes(model), bytes);
 }

@@ -134,9 +134,8 @@ std::vector<double> DeltaE00Sigma(const Colorimeter& colorimeter, const AlloyMod
     sigma[a] = std::sqrt(sum / indices.size());
     if (!std::isfinite(sigma[a])) {
       throw Error((model.source().empty() ? std::string() : model.source() + ": ") +
-                  "the colours of the " + model.method() + " model's covariance draws at x = " +
-                  FormatNumber(x_atomic) + " are not finite; its parameters.covariance is too " +
-                  "wide to use (refit, or refit with --no-covariance)");
+                  "the colours of the " + model.method() + " model's uncertainty draws at x = " +
+                  FormatNumber(x_atomic) + " are not finite; " + kUncertaintyTooWide);
     }
   }
   return sigma;

@@ -275,8 +275,9 @@ StreamOutput::~StreamOutput() {
 
 void StreamOutput::WriteToFd(const char* data, std::size_t size) {
   if (const int error = WriteAll(fd_, data, size); error != 0) {
-    Fail("cannot write '" + (path_.empty() ? std::string("a temporary file for standard output")
-                                            : path_) + "': " + ErrnoText(error));
+    Fail("cannot write '" +
+         (path_.empty() ? std::string("a temporary file for standard output") : path_) +
+         "': " + ErrnoText(error));
   }
 }
 

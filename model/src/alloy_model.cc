@@ -16,6 +16,9 @@
 
 namespace alloycolor {
 
+const char* const kUncertaintyTooWide =
+    "its uncertainty (parameters.covariance or uncertainty) is too wide to propagate; refit";
+
 bool UsablePermittivity(double eps1, double eps2) {
   return std::abs(eps1) <= kMaxUsablePermittivity && std::abs(eps2) <= kMaxUsablePermittivity &&
          (eps1 != 0.0 || eps2 != 0.0);  // NaN fails the comparisons
@@ -57,10 +60,9 @@ std::vector<std::vector<std::complex<double>>> AlloyModel::CheckedDraws(
   try {
     draws = PermittivityDraws(x_atomic, lambda_nm, count, seed);
   } catch (const Error&) {  // a method that checks its own values (the smooth model)
-    throw Error((source_.empty() ? std::string() : source_ + ": ") + "a draw of the " +
-                method() + " model's covariance gives eps that is not finite at x = " +
-                FormatNumber(x_atomic) + "; its parameters.covariance is too wide to use " +
-                "(refit, or refit with --no-covariance)");
+    throw Error((source_.empty() ? std::string() : source_ + ": ") + "a draw of the " + method() +
+                " model's uncertainty gives eps that is not finite at x = " +
+                FormatNumber(x_atomic) + "; " + kUncertaintyTooWide);
   }
   for (const auto& draw : draws) {
     for (size_t i = 0; i < draw.size() && i < lambda_nm.size(); ++i) {
@@ -80,9 +82,8 @@ void AlloyModel::FailUnusable(double x_atomic, double lambda_nm, std::complex<do
                             " nm (" + value + ": not finite, zero or beyond 1e30)";
   const std::string name = source_.empty() ? std::string() : source_ + ": ";
   if (draw) {
-    throw Error(name + "a draw of the " + method() + " model's covariance gives no usable " +
-                "permittivity" + where + "; its parameters.covariance is too wide to use " +
-                "(refit, or refit with --no-covariance)");
+    throw Error(name + "a draw of the " + method() + " model's uncertainty gives no usable " +
+                "permittivity" + where + "; " + kUncertaintyTooWide);
   }
   throw Error(name + "the " + method() + " model gives no usable permittivity" + where +
               "; its parameters cannot be used there");

@@ -206,10 +206,10 @@ SampleModel::SampleModel(Kind kind, const nlohmann::json& doc, const std::string
       const double tolerance = 1e-9 * lambda_max_nm();
       if (node.nk.lambda_nm.front() > lambda_min_nm() + tolerance ||
           node.nk.lambda_nm.back() < lambda_max_nm() - tolerance) {
-        throw Error(where + ".lambda_nm: covers " + FormatNumber(node.nk.lambda_nm.front()) +
-                    "-" + FormatNumber(node.nk.lambda_nm.back()) +
-                    " nm, not the whole lambda_range_nm [" + FormatNumber(lambda_min_nm()) +
-                    ", " + FormatNumber(lambda_max_nm()) + "]");
+        throw Error(where + ".lambda_nm: covers " + FormatNumber(node.nk.lambda_nm.front()) + "-" +
+                    FormatNumber(node.nk.lambda_nm.back()) +
+                    " nm, not the whole lambda_range_nm [" + FormatNumber(lambda_min_nm()) + ", " +
+                    FormatNumber(lambda_max_nm()) + "]");
       }
       nodes_.push_back(std::move(node));
     } catch (const nlohmann::json::exception& e) {

@@ -62,8 +62,7 @@ void InstallTemporaryCleanup();
 class StreamOutput {
  public:
   static constexpr std::size_t kDefaultMemoryBytes = std::size_t{64} << 20;
-  explicit StreamOutput(const std::string& path,
-                        std::size_t memory_bytes = kDefaultMemoryBytes);
+  explicit StreamOutput(const std::string& path, std::size_t memory_bytes = kDefaultMemoryBytes);
   ~StreamOutput();
   StreamOutput(const StreamOutput&) = delete;
   StreamOutput& operator=(const StreamOutput&) = delete;
@@ -79,11 +78,11 @@ class StreamOutput {
   void WriteToFd(const char* data, std::size_t size);
   void SpillToTemporary();
 
-  std::string path_;   // empty for standard output
+  std::string path_;  // empty for standard output
   std::string name_;
-  std::string temp_;   // the named temporary of a file output
-  int fd_ = -1;        // the temporary's descriptor, once there is one
-  int slot_ = -1;      // the signal handler's slot for temp_
+  std::string temp_;  // the named temporary of a file output
+  int fd_ = -1;       // the temporary's descriptor, once there is one
+  int slot_ = -1;     // the signal handler's slot for temp_
   std::size_t memory_bytes_;
   std::string memory_;  // standard output: held here until past memory_bytes
   bool committed_ = false;

@@ -170,7 +170,7 @@ class AlloyModel {
       double x_atomic, const std::vector<double>& lambda_nm, int count = kUncertaintyDraws,
       std::uint32_t seed = kUncertaintySeed) const;
   // PermittivityDraws with every value checked: throws Error naming source() and the
-  // covariance when a draw is not usable (a covariance too wide to propagate).
+  // uncertainty when a draw is not usable (an uncertainty too wide to propagate).
   std::vector<std::vector<std::complex<double>>> CheckedDraws(
       double x_atomic, const std::vector<double>& lambda_nm, int count = kUncertaintyDraws,
       std::uint32_t seed = kUncertaintySeed) const;
@@ -215,7 +215,7 @@ class AlloyModel {
   void set_source(std::string source) { source_ = std::move(source); }
 
   // Throws Error naming source(), the composition and the wavelength: eps there is not
-  // usable (`draw`: in a draw of the covariance).
+  // usable (`draw`: in a draw of the uncertainty).
   [[noreturn]] void FailUnusable(double x_atomic, double lambda_nm, std::complex<double> eps,
                                  bool draw) const;
 
@@ -241,6 +241,9 @@ class AlloyModel {
   std::string source_;
 };
 
+// The end of the message for a model whose uncertainty draws cannot be used.
+extern const char* const kUncertaintyTooWide;
+
 // The largest |eps1|, |eps2| the optics take: metals reach about 1e8 at 1 mm; beyond 1e30
 // the Fresnel terms (|eps|^2) would overflow.
 inline constexpr double kMaxUsablePermittivity = 1e30;
@@ -253,7 +256,7 @@ bool UsablePermittivity(double eps1, double eps2);
 // Throws Error naming model.source() unless the model can be used over its whole stated
 // range: a native grid (native_grid_nm) runs from lambda_range_nm[0] to [1]; eps is
 // usable at the ends of the x range and at the training compositions, at the colour
-// tables' 5 nm steps and the native grid; every covariance draw is usable at the ends and
+// tables' 5 nm steps and the native grid; every uncertainty draw is usable at the ends and
 // the middle of the x range. ModelFromJson calls it on every file; `fit` before writing.
 void CheckModelUsable(const AlloyModel& model);
 

@@ -105,7 +105,7 @@ void Run(const ColorOptions& o) {
                                          color::IndexOnGrid(colorimeter, *model, x),
                                          o.angle_deg));
     const double sigma = color::DeltaE00Sigma(colorimeter, *model, x, o.angle_deg);
-    RequireFinite(c, sigma, "composition x = " + FormatNumber(x));
+    RequireFinite(c, sigma, model->source() + ": composition x = " + FormatNumber(x));
     if (o.json) {
       nlohmann::json r = {{"x", x},
                           {"x_weight", WeightFromAtomicFraction(x, model->system())}};

@@ -168,6 +168,7 @@ void Run(const ExploreOptions& o) {
     }
   }
   const auto model = o.source.Load(o.quiet);
+  CheckOutputPath(o.out);  // before the work: not an input, a symlink or a device
 
   const auto start = std::chrono::steady_clock::now();
   const render::CompositionTable table =

@@ -138,6 +138,13 @@ void Run(const FitOptions& o) {
   const color::Colorimeter colorimeter = LoadColorimeter("D65", 2);
   settings.colorimeter = &colorimeter;
   const std::unique_ptr<AlloyModel> model = fit::BuildModel(o.method, dataset, settings);
+  // The file must be one the other commands can use: read back as they will read it.
+  const std::string text = ModelFileText(*model);
+  try {
+    ModelFromJson(nlohmann::json::parse(text), "the fitted model");
+  } catch (const std::exception& e) {
+    throw Error(MessageLine(o.out, 120) + " not written: " + e.what());
+  }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!o.quiet) {
@@ -172,7 +179,7 @@ void Run(const FitOptions& o) {
     }
     if (old_model) ReportChanges(*old_model, *model);
   }
-  WriteOutput(o.out, ModelFileText(*model), o.quiet);
+  WriteOutput(o.out, text, o.quiet);
 }
 
 }  // namespace

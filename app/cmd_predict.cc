@@ -52,7 +52,7 @@ void Run(const PredictOptions& o, CLI::App* cmd) {
   const std::vector<std::complex<double>> index = model->Index(x, grid);
   std::vector<double> n_sigma, k_sigma;
   if (o.sigma || o.format == "json") {
-    const auto draws = model->PermittivityDraws(x, grid);
+    const auto draws = model->CheckedDraws(x, grid);
     if (!draws.empty()) {
       n_sigma.assign(grid.size(), 0.0);
       k_sigma.assign(grid.size(), 0.0);
@@ -77,8 +77,8 @@ void Run(const PredictOptions& o, CLI::App* cmd) {
     const bool finite = std::isfinite(index[i].real()) && std::isfinite(index[i].imag()) &&
                         (n_sigma.empty() || (std::isfinite(n_sigma[i]) && std::isfinite(k_sigma[i])));
     if (!finite) {
-      throw Error("x = " + FormatNumber(x) + ", " + FormatNumber(grid[i]) + " nm: the " +
-                  model->method() + " model gives no finite n, k" +
+      throw Error(model->source() + ": x = " + FormatNumber(x) + ", " + FormatNumber(grid[i]) +
+                  " nm: the " + model->method() + " model gives no finite n, k" +
                   (n_sigma.empty() ? "" : " or sigma") + " here");
     }
   }

@@ -126,6 +126,7 @@ void Run(const RenderCommandOptions& o) {
   const color::Colorimeter colorimeter = LoadColorimeter(o.illuminant, o.observer);
   std::string description;
   const std::vector<Material> materials = LoadMaterials(o, colorimeter, &description);
+  CheckOutputPath(o.out);  // before the work: not an input, a symlink or a device
   const long long pixels = static_cast<long long>(materials.size()) * options.size * options.size;
   if (pixels > render::kMaxImagePixels) {
     throw Error("--size: " + std::to_string(materials.size()) + " tiles of " +

@@ -1,5 +1,7 @@
 // alloycolor sweep: the colour of an alloy at N evenly spaced compositions, as CSV or JSON,
-// fast enough for millions of rows (render/sweep.h; output formatted into large blocks).
+// fast enough for millions of rows (render/sweep.h; output formatted into blocks), all or
+// nothing: the rows stream through a StreamOutput (core/output.h), so a sweep that fails
+// half-way shows no row, whatever its size, in bounded memory.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -12,9 +14,11 @@
 #include <string_view>
 #include <vector>
 
-#include "alloycolor/core/error.h"
 #include "alloycolor/color/colorimetry.h"
 #include "alloycolor/color/sweep.h"
+#include "alloycolor/core/error.h"
+#include "alloycolor/core/output.h"
+#include "alloycolor/core/text.h"
 #include "common.h"
 
 namespace alloycolor::app {
@@ -34,12 +38,13 @@ struct SweepOptions {
   std::string format = "csv";
   bool exact = false;
   bool quiet = false;
+  std::string out;  // empty: standard output
 };
 
-// Text written to a FILE in blocks of 64 MiB, numbers formatted without stdio.
+// Text formatted without stdio into blocks of 1 MiB, each handed to the StreamOutput.
 class Output {
  public:
-  explicit Output(std::FILE* file) : file_(file) { buffer_.resize(kBlock + kSlack); }
+  explicit Output(StreamOutput* stream) : stream_(stream) { buffer_.resize(kBlock + kSlack); }
   ~Output() = default;
 
   void Text(std::string_view text) {
@@ -99,18 +104,14 @@ class Output {
   }
 
   void Flush() {
-    if (used_ > 0 && std::fwrite(buffer_.data(), 1, used_, file_) != used_) {
-      throw Error("cannot write standard output");
-    }
+    if (used_ > 0) stream_->Write(buffer_.data(), used_);
     used_ = 0;
   }
 
  private:
-  // 64 MiB (some 900,000 rows) are held before the first write, so that a sweep of that
-  // size that fails prints nothing.
-  static constexpr size_t kBlock = 64 << 20;
+  static constexpr size_t kBlock = 1 << 20;
   static constexpr size_t kSlack = 4096;  // room for one row past the block
-  std::FILE* file_;
+  StreamOutput* stream_;
   std::vector<char> buffer_;
   size_t used_ = 0;
 };
@@ -158,7 +159,8 @@ void Run(const SweepOptions& o) {
   const color::XYZ white = colorimeter.White();
   const bool json = o.format == "json";
 
-  Output out(stdout);
+  StreamOutput stream(o.out);
+  Output out(&stream);
   if (json) {
     nlohmann::json head = {{"system", model->system().Name()},
                            {"method", model->method()},
@@ -185,7 +187,7 @@ void Run(const SweepOptions& o) {
     const double x = i == 0 ? from : i == o.steps - 1 ? to : from + span * (i / last);
     const color::XYZ xyz = table ? sweep.XYZAt(x) : sweep.ExactXYZ(x);
     if (!std::isfinite(xyz.X) || !std::isfinite(xyz.Y) || !std::isfinite(xyz.Z)) {
-      throw Error("composition x = " + Describe(x) + ": the " + model->method() +
+      throw Error(source + ": composition x = " + Describe(x) + ": the " + model->method() +
                   " model gives no finite colour");
     }
     const color::Lab lab = color::LabFromXYZ(xyz, white);
@@ -220,7 +222,10 @@ void Run(const SweepOptions& o) {
   }
   if (json) out.Text("\n]}\n");
   out.Flush();
-  if (std::fflush(stdout) != 0) throw Error("cannot write standard output");
+  stream.Commit();
+  if (!o.out.empty() && !o.quiet) {
+    std::fprintf(stderr, "alloycolor: wrote %s\n", MessageLine(o.out).c_str());
+  }
   if (table && !o.quiet) {
     std::fprintf(stderr,
                  "alloycolor: sweep: XYZ interpolated from a table of %d compositions, "
@@ -256,6 +261,10 @@ void RegisterSweep(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--format", o->format, "csv or json")->capture_default_str();
   cmd->add_flag("--exact", o->exact, "Evaluate every composition exactly (no table)");
+  cmd->add_option("--out", o->out,
+                  "Write the rows to this file (streamed to a temporary beside it and renamed "
+                  "when complete) instead of standard output (held, past 64 MiB in a "
+                  "temporary file, until complete)");
   cmd->add_flag("--quiet", o->quiet, "No warnings or notes on stderr");
   cmd->callback([o]() { Run(*o); });
 }

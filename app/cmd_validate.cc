@@ -135,6 +135,9 @@ void PrepareOutput(const std::string& dir) {
   const std::string probe = (fs::path(dir) / ".alloycolor-write-check").string();
   WriteFileAtomic(probe, "");
   fs::remove(probe, ec);
+  for (const char* name : {"report.json", "report.html"}) {
+    CheckOutputPath((fs::path(dir) / name).string());  // no symlink or device to replace
+  }
 }
 
 void PrintSummary(const nlohmann::json& report) {

@@ -12,12 +12,16 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/io.h"
@@ -282,6 +286,197 @@ TEST(Messages, AModelWithAStringFinalCostNamesTheField) {
   ExpectOneError(RunProgram({"fit", "--data", "Au-Ag", "--method", "smooth", "--from", model,
                              "--out", dir + "/new.json", "--quiet"}),
                  {"m.json", "final_cost"});
+}
+
+// ---- Round two: the classes still open after the first pass.
+
+std::string BadInput(const std::string& name) { return TestsDir() + "/bad-inputs/" + name; }
+
+double SecondsOf(const std::function<void()>& f) {
+  const auto start = std::chrono::steady_clock::now();
+  f();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Every command that reads a model refuses one that cannot be used over its stated range,
+// at once, naming the file and what is wrong: a grid past the range, a sample short of it,
+// eps the physical model cannot compute (it returns 0 there: never a white colour with
+// sigma 0), covariance draws that overflow.
+TEST(ModelFiles, AnUnusableModelIsRefusedByEveryCommand) {
+  const std::string dir = MakeTempDir();
+  const std::vector<std::pair<std::string, std::string>> models = {
+      {"smooth-grid-short-of-range.model.json", "parameters.lambda_nm"},
+      {"paper-sample-short.model.json", "parameters.samples[1].lambda_nm"},
+      {"lambda-range-1e17.model.json", "lambda_range_nm"},
+      {"physical-eps-zero.model.json", "no usable permittivity"},
+      {"physical-covariance-overflow.model.json", "parameters.covariance"}};
+  for (const auto& [name, field] : models) {
+    const std::string model = BadInput(name);
+    for (const std::vector<std::string>& args :
+         {std::vector<std::string>{"color", "--model", model, "--x", "0.5", "--json"},
+          {"sweep", "--model", model, "--steps", "1000"},
+          {"sweep", "--model", model, "--steps", "5", "--exact"},
+          {"predict", "--model", model, "--x", "0.5", "--format", "json"},
+          {"params", "--model", model},
+          {"render", "--model", model, "--x", "0.5", "--size", "8", "--out", dir + "/r.png"},
+          {"export", "--model", model, "--x", "0.5", "--out", dir + "/e"},
+          {"chart", "--model", model, "--steps", "3", "--out", dir + "/c.svg"}}) {
+      SCOPED_TRACE(args[0] + " " + name);
+      RunResult r;
+      EXPECT_LT(SecondsOf([&] { r = RunProgram(args); }), 10.0);
+      ExpectOneError(r, {name, field});
+    }
+  }
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 0);
+}
+
+// A sweep is all or nothing. A model that cannot be evaluated part-way (the physical
+// model, its x range narrowed by hand to [0, 0.3] and an E0 given a P6 term, extrapolated:
+// E0 reaches 0 near x = 0.77) prints no row, on standard output or in --out.
+TEST(Streams, ASweepThatFailsPartWayShowsNoRow) {
+  const std::string model = TestsDir() + "/hardening/physical-narrow-x-range.model.json";
+  const std::vector<std::string> sweep = {"sweep",   "--model", model,   "--extrapolate",
+                                          "--exact", "--steps", "20000", "--from",
+                                          "0",       "--to",    "1",     "--quiet"};
+  ExpectOneError(RunProgram(sweep), {model, "no usable permittivity"});
+  const std::string dir = MakeTempDir();
+  const std::string out = dir + "/sweep.csv";
+  WriteText(out, "old\n");
+  std::vector<std::string> args = sweep;
+  args.insert(args.end(), {"--out", out});
+  ExpectOneError(RunProgram(args), {model, "no usable permittivity"});
+  EXPECT_EQ(ReadBytes(out), "old\n");
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
+  // In range it works.
+  const RunResult r = RunProgram({"sweep", "--model", model, "--steps", "5", "--exact"});
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(CountLines(r.out), 6);
+}
+
+// The program run with $TMPDIR set (RunProgram itself needs the caller's): through the
+// shell, arguments without quotes or spaces.
+RunResult RunWithTmpdir(const std::string& tmpdir, const std::vector<std::string>& args) {
+  const std::string files = MakeTempDir();
+  std::string command = "TMPDIR='" + tmpdir + "' '" + std::string(ALLOYCOLOR_BINARY) + "'";
+  for (const std::string& a : args) command += " '" + a + "'";
+  command += " >'" + files + "/out' 2>'" + files + "/err'";
+  const int status = std::system(command.c_str());
+  RunResult r;
+  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = ReadBytes(files + "/out");
+  r.err = ReadBytes(files + "/err");
+  fs::remove_all(files);
+  return r;
+}
+
+// Past 64 MiB standard output is held in an unlinked file in $TMPDIR until the sweep is
+// complete: a sweep that cannot hold it (no such folder) prints nothing; one that can
+// prints every row, complete JSON, the same bytes as --out.
+TEST(Streams, ASweepPast64MiBIsHeldUntilComplete) {
+  const std::vector<std::string> sweep = {"sweep",      "--data",  "Au-Ag",    "--method",
+                                          "eps-linear", "--exact", "--format", "json",
+                                          "--steps",    "700000",  "--quiet"};
+  const std::string dir = MakeTempDir();
+  ExpectOneError(RunWithTmpdir(dir + "/no-such-folder", sweep),
+                 {"standard output", "64 MiB", "no-such-folder"});
+  const RunResult r = RunWithTmpdir(dir, sweep);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_GT(r.out.size(), std::size_t{64} << 20);
+  EXPECT_EQ(r.out.substr(r.out.size() - 4), "\n]}\n");
+  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 700000 + 2);  // head, rows, end
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 0);
+  const std::string out = dir + "/sweep.json";
+  std::vector<std::string> args = sweep;
+  args.insert(args.end(), {"--out", out});
+  ASSERT_EQ(RunProgram(args).status, 0);
+  EXPECT_TRUE(ReadBytes(out) == r.out);
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
+}
+
+// The colour table of `color` is all or nothing too: a list whose last composition cannot
+// be coloured prints no row.
+TEST(Streams, AColourListThatFailsPrintsNothing) {
+  const std::string model = TestsDir() + "/hardening/physical-narrow-x-range.model.json";
+  for (const char* format : {"--quiet", "--json"}) {
+    ExpectOneError(
+        RunProgram({"color", "--model", model, "--extrapolate", "--x", "0,0.2,0.95", format}),
+        {model, "x = 0.95"});
+  }
+}
+
+// Two validate runs into one folder, at the same time: the folder ends up holding one
+// run's report.json and report.html, never one of each, and no temporary.
+TEST(OutputWriter, TwoValidateRunsIntoOneFolderDoNotMix) {
+  const std::string out = MakeTempDir() + "/report";
+  const std::string program = ALLOYCOLOR_BINARY;
+  auto run = [&](const std::string& method) {
+    return "'" + program + "' validate --data Au-Ag --holdout 0.5 --methods " + method +
+           " --out '" + out + "' --quiet >/dev/null 2>&1";
+  };
+  for (int round = 0; round < 4; ++round) {
+    const std::string both = run("paper") + " & " + run("eps-linear") + " & wait";
+    ASSERT_EQ(std::system(("bash -c \"" + both + "\"").c_str()), 0);
+    const nlohmann::json report = nlohmann::json::parse(ReadBytes(out + "/report.json"));
+    const std::string method = report.at("methods").at(0).get<std::string>();
+    const std::string html = ReadBytes(out + "/report.html");
+    SCOPED_TRACE("round " + std::to_string(round) + ": report.json is " + method + "'s");
+    EXPECT_EQ(html.find("eps-linear") != std::string::npos, method == "eps-linear");
+    EXPECT_EQ(std::distance(fs::directory_iterator(out), fs::directory_iterator()), 2);
+  }
+}
+
+// Option lists are bounded and checked at once; NUL bytes, fractional degrees, a system of
+// one element and one spectrum at two compositions are refused.
+TEST(Bounds, ManyValuesAndOddInputsAreRefusedAtOnce) {
+  std::string xs = "0.5";
+  for (int i = 1; i < 20000; ++i) xs += ",0.5";
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"color", "--data", "Au-Ag", "--x", xs},
+        {"render", "--data", "Au-Ag", "--x", xs, "--out", MakeTempDir() + "/r.png"},
+        {"validate", "--data", "Au-Ag", "--angles", xs, "--out", MakeTempDir() + "/v"}}) {
+    SCOPED_TRACE(args[0]);
+    RunResult r;
+    EXPECT_LT(SecondsOf([&] { r = RunProgram(args); }), 5.0);
+    ExpectOneError(r, {"at most 1000"});
+  }
+  ExpectOneError(RunProgram({"color", "--nk", BadInput("nul-in-number.yml")}),
+                 {"nul-in-number.yml:5", "NUL"});
+  ExpectOneError(RunProgram({"color", "--nk", BadInput("nul-in-number.csv")}),
+                 {"nul-in-number.csv:3"});
+  ExpectOneError(
+      RunProgram({"color", "--data", BadInput("nul-in-file-name.dataset.json"), "--x", "0.5"}),
+      {"NUL"});
+  ExpectOneError(RunProgram({"fit", "--data", "Au-Ag", "--method", "smooth", "--degree", "1.5",
+                             "--out", MakeTempDir() + "/m.json"}),
+                 {"--degree"});
+  ExpectOneError(
+      RunProgram({"color", "--model", BadInput("system-au-au.model.json"), "--x", "0.5"}),
+      {"system-au-au.model.json", "both 'Au'"});
+  for (const char* manifest :
+       {"same-file-twice.dataset.json", "same-spectrum-twice.dataset.json"}) {
+    ExpectOneError(RunProgram({"fit", "--data", BadInput(manifest), "--method", "paper", "--out",
+                               MakeTempDir() + "/m.json"}),
+                   {manifest, "one"});
+  }
+}
+
+// An output that is an input or a device is refused before the work, so the one error
+// line is all a command prints (render and explore used to print their progress first).
+TEST(OutputWriter, ABadOutputIsRefusedBeforeTheWork) {
+  const std::string dir = MakeTempDir();
+  const std::string model = dir + "/m.png";
+  ASSERT_EQ(
+      RunProgram({"fit", "--data", "Au-Ag", "--method", "paper", "--out", model, "--quiet"}).status,
+      0);
+  const std::string bytes = ReadBytes(model);
+  ExpectOneError(
+      RunProgram({"render", "--model", model, "--x", "0.5", "--size", "8", "--out", model}),
+      {"one of this command's inputs"});
+  ExpectOneError(
+      RunProgram({"render", "--model", model, "--x", "0.5", "--size", "8", "--out", "/dev/null"}),
+      {"/dev/null"});
+  ExpectOneError(RunProgram({"explore", "--model", model, "--out", "/dev/null"}), {"/dev/null"});
+  EXPECT_EQ(ReadBytes(model), bytes);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/grid.h"
+#include "alloycolor/core/text.h"
 #include "alloycolor/model/optics.h"
 
 namespace alloycolor::color {
@@ -108,7 +109,7 @@ std::vector<double> DeltaE00Sigma(const Colorimeter& colorimeter, const AlloyMod
       EvaluationGrid(colorimeter, model.lambda_min_nm(), model.lambda_max_nm(),
                      "the " + model.method() + " model");
   const std::vector<std::complex<double>> central_index = model.Index(x_atomic, grid);
-  const auto eps_draws = model.PermittivityDraws(x_atomic, grid, draws);
+  const auto eps_draws = model.CheckedDraws(x_atomic, grid, draws);
   if (eps_draws.empty()) return sigma;
   std::vector<std::vector<std::complex<double>>> indices;
   for (const auto& eps : eps_draws) {
@@ -131,6 +132,11 @@ std::vector<double> DeltaE00Sigma(const Colorimeter& colorimeter, const AlloyMod
       sum += de * de;
     }
     sigma[a] = std::sqrt(sum / indices.size());
+    if (!std::isfinite(sigma[a])) {
+      throw Error((model.source().empty() ? std::string() : model.source() + ": ") +
+                  "the colours of the " + model.method() + " model's uncertainty draws at x = " +
+                  FormatNumber(x_atomic) + " are not finite; " + kUncertaintyTooWide);
+    }
   }
   return sigma;
 }

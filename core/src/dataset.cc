@@ -285,6 +285,18 @@ Dataset Load(const std::string& dir_or_manifest) {
     // The readers' warnings already begin with the file (and line).
     for (std::string& warning : warnings) dataset.warnings.push_back(std::move(warning));
   }
+  // Nor can one measurement copied under two names (or columns) be two compositions.
+  for (std::size_t i = 0; i < dataset.samples.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j) {
+      const Sample& s = dataset.samples[j];
+      const Sample& t = dataset.samples[i];
+      if (s.nk.lambda_nm == t.nk.lambda_nm && s.nk.n == t.nk.n && s.nk.k == t.nk.k) {
+        Fail(manifest + ": samples " + Quote60(s.file) + " and " + Quote60(t.file) +
+             " hold the same n, k at every wavelength (at x = " + FormatNumber(s.x_given) +
+             " and " + FormatNumber(t.x_given) + "); one measurement is one composition");
+      }
+    }
+  }
   return dataset;
 }
 

@@ -356,6 +356,12 @@ std::vector<Entry> YamlEntries(const std::string& path, const std::string& text,
          " MiB is too large for a refractiveindex.info file (the limit is " +
          std::to_string(kMaxYamlBytes >> 20) + " MiB)");
   }
+  // yaml-cpp reads past a NUL byte (so "0.1<NUL>5" would be 0.1): refused first.
+  if (const std::size_t nul = text.find('\0'); nul != std::string::npos) {
+    const auto line = 1 + std::count(text.begin(), text.begin() + nul, '\n');
+    Fail(path + ":" + std::to_string(line) +
+         ": a NUL byte; a refractiveindex.info file is text (DATA cannot be read)");
+  }
   YAML::Node root;
   try {
     const std::vector<YAML::Node> documents = YAML::LoadAll(text);

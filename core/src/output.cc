@@ -10,6 +10,7 @@
 #include <cerrno>
 #include <csignal>
 #include <cstddef>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <map>
@@ -166,6 +167,13 @@ void CheckOutputPath(const std::string& path) {
   std::lock_guard<std::mutex> lock(InputsMutex());
   const auto input = Inputs().find(FileId{info.st_dev, info.st_ino});
   if (input != Inputs().end()) {
+    // The input is still that file (not deleted, its inode reused by this one)?
+    struct stat again;
+    if (stat(input->second.c_str(), &again) != 0 || again.st_dev != info.st_dev ||
+        again.st_ino != info.st_ino) {
+      Inputs().erase(input);
+      return;
+    }
     Fail("cannot write '" + path + "': it is one of this command's inputs ('" + input->second +
          "'); choose another output name");
   }
@@ -216,6 +224,128 @@ void WriteFileSetAtomic(const std::vector<OutputFile>& files) {
 
 void WriteFileAtomic(const std::string& path, const std::string& contents) {
   WriteFileSetAtomic({OutputFile{path, contents}});
+}
+
+namespace {
+
+// Writes all of `size` bytes to fd; returns errno, or 0.
+int WriteAll(int fd, const char* data, std::size_t size) {
+  std::size_t written = 0;
+  while (written < size) {
+    const ssize_t put = write(fd, data + written, size - written);
+    if (put < 0 && errno == EINTR) continue;
+    if (put < 0) return errno;
+    written += static_cast<std::size_t>(put);
+  }
+  return 0;
+}
+
+}  // namespace
+
+StreamOutput::StreamOutput(const std::string& path, std::size_t memory_bytes)
+    : path_(path == "-" ? std::string() : path),
+      name_(path_.empty() ? "standard output" : path_),
+      memory_bytes_(memory_bytes) {
+  if (path_.empty()) return;
+  CheckOutputPath(path_);
+  temp_ = TemporaryPathFor(path_);
+  slot_ = TakeSlot(temp_);
+  const int flags = O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC | O_NOFOLLOW;
+  fd_ = open(temp_.c_str(), flags, 0666);
+  if (fd_ < 0 && errno == EEXIST) {  // left by a killed process that had this id
+    unlink(temp_.c_str());
+    fd_ = open(temp_.c_str(), flags, 0666);
+  }
+  if (fd_ < 0) {
+    const int error = errno;
+    ReleaseSlot(slot_);
+    Fail("cannot write '" + path_ + "': " + ErrnoText(error));
+  }
+  struct stat old_info;  // a replaced file keeps its permissions
+  if (stat(path_.c_str(), &old_info) == 0 && S_ISREG(old_info.st_mode)) {
+    fchmod(fd_, old_info.st_mode & 07777);
+  }
+}
+
+StreamOutput::~StreamOutput() {
+  if (fd_ >= 0) close(fd_);
+  if (!committed_ && !temp_.empty()) unlink(temp_.c_str());
+  ReleaseSlot(slot_);
+}
+
+void StreamOutput::WriteToFd(const char* data, std::size_t size) {
+  if (const int error = WriteAll(fd_, data, size); error != 0) {
+    Fail("cannot write '" +
+         (path_.empty() ? std::string("a temporary file for standard output") : path_) +
+         "': " + ErrnoText(error));
+  }
+}
+
+void StreamOutput::SpillToTemporary() {
+  const char* dir = std::getenv("TMPDIR");
+  const std::string folder = dir && *dir ? dir : "/tmp";
+  // Unlinked at once: nothing is left behind, whatever ends the process.
+  fd_ = open(folder.c_str(), O_TMPFILE | O_RDWR | O_CLOEXEC, 0600);
+  if (fd_ < 0) {
+    std::string name = folder + "/alloycolor-stdout-XXXXXX";
+    fd_ = mkostemp(name.data(), O_CLOEXEC);
+    if (fd_ >= 0) unlink(name.c_str());
+  }
+  if (fd_ < 0) {
+    Fail("cannot hold standard output past " + std::to_string(memory_bytes_ >> 20) +
+         " MiB: no temporary file in '" + folder + "': " + ErrnoText(errno));
+  }
+  WriteToFd(memory_.data(), memory_.size());
+  std::string().swap(memory_);
+}
+
+void StreamOutput::Write(const char* data, std::size_t size) {
+  if (committed_) Fail("cannot write '" + name_ + "': already complete");
+  if (path_.empty() && fd_ < 0) {
+    if (memory_.size() + size <= memory_bytes_) {
+      memory_.append(data, size);
+      return;
+    }
+    SpillToTemporary();
+  }
+  WriteToFd(data, size);
+}
+
+void StreamOutput::Commit() {
+  if (committed_) return;
+  if (!path_.empty()) {
+    if (fsync(fd_) != 0) Fail("cannot write '" + path_ + "': " + ErrnoText(errno));
+    const int fd = fd_;
+    fd_ = -1;
+    if (close(fd) != 0) Fail("cannot write '" + path_ + "': " + ErrnoText(errno));
+    CheckOutputPath(path_);  // still no symlink, device or input put there meanwhile
+    if (rename(temp_.c_str(), path_.c_str()) != 0) {
+      Fail("cannot write '" + path_ + "': " + ErrnoText(errno));
+    }
+    committed_ = true;
+    SyncFolder(path_);
+    return;
+  }
+  committed_ = true;
+  if (fd_ < 0) {
+    if (const int error = WriteAll(STDOUT_FILENO, memory_.data(), memory_.size()); error != 0) {
+      Fail("cannot write standard output: " + ErrnoText(error));
+    }
+    std::string().swap(memory_);
+    return;
+  }
+  if (lseek(fd_, 0, SEEK_SET) != 0) Fail("cannot read back standard output: " + ErrnoText(errno));
+  std::vector<char> block(std::size_t{1} << 20);
+  for (;;) {
+    const ssize_t got = read(fd_, block.data(), block.size());
+    if (got < 0 && errno == EINTR) continue;
+    if (got < 0) Fail("cannot read back standard output: " + ErrnoText(errno));
+    if (got == 0) break;
+    if (const int error = WriteAll(STDOUT_FILENO, block.data(), static_cast<std::size_t>(got));
+        error != 0) {
+      Fail("cannot write standard output: " + ErrnoText(error));
+    }
+  }
 }
 
 void InstallTemporaryCleanup() {

@@ -16,14 +16,77 @@
 
 namespace alloycolor {
 
+const char* const kUncertaintyTooWide =
+    "its uncertainty (parameters.covariance or uncertainty) is too wide to propagate; refit";
+
+bool UsablePermittivity(double eps1, double eps2) {
+  return std::abs(eps1) <= kMaxUsablePermittivity && std::abs(eps2) <= kMaxUsablePermittivity &&
+         (eps1 != 0.0 || eps2 != 0.0);  // NaN fails the comparisons
+}
+
+namespace {
+
+// Runs `evaluate`, an evaluation of `model`; an Error that does not name the model's source
+// is given it in front.
+template <typename F>
+auto NamingSource(const AlloyModel& model, F evaluate) -> decltype(evaluate()) {
+  try {
+    return evaluate();
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    if (model.source().empty() || what.rfind(model.source() + ":", 0) == 0) throw;
+    throw Error(model.source() + ": " + what);
+  }
+}
+
+}  // namespace
+
 std::vector<std::complex<double>> AlloyModel::Index(
     double x_atomic, const std::vector<double>& lambda_nm) const {
-  std::vector<std::complex<double>> eps = Permittivity(x_atomic, lambda_nm);
-  for (auto& e : eps) {
+  std::vector<std::complex<double>> eps =
+      NamingSource(*this, [&] { return Permittivity(x_atomic, lambda_nm); });
+  for (size_t i = 0; i < eps.size(); ++i) {
+    std::complex<double>& e = eps[i];
+    if (!UsablePermittivity(e.real(), e.imag())) FailUnusable(x_atomic, lambda_nm[i], e, false);
     const Complex<double> nk = IndexFromPermittivity(Complex<double>{e.real(), e.imag()});
     e = {nk.re, nk.im};
   }
   return eps;
+}
+
+std::vector<std::vector<std::complex<double>>> AlloyModel::CheckedDraws(
+    double x_atomic, const std::vector<double>& lambda_nm, int count, std::uint32_t seed) const {
+  std::vector<std::vector<std::complex<double>>> draws;
+  try {
+    draws = PermittivityDraws(x_atomic, lambda_nm, count, seed);
+  } catch (const Error&) {  // a method that checks its own values (the smooth model)
+    throw Error((source_.empty() ? std::string() : source_ + ": ") + "a draw of the " + method() +
+                " model's uncertainty gives eps that is not finite at x = " +
+                FormatNumber(x_atomic) + "; " + kUncertaintyTooWide);
+  }
+  for (const auto& draw : draws) {
+    for (size_t i = 0; i < draw.size() && i < lambda_nm.size(); ++i) {
+      if (!UsablePermittivity(draw[i].real(), draw[i].imag())) {
+        FailUnusable(x_atomic, lambda_nm[i], draw[i], true);
+      }
+    }
+  }
+  return draws;
+}
+
+void AlloyModel::FailUnusable(double x_atomic, double lambda_nm, std::complex<double> eps,
+                              bool draw) const {
+  const std::string value = "eps = " + FormatNumber(eps.real()) + (eps.imag() < 0 ? "" : "+") +
+                            FormatNumber(eps.imag()) + "i";
+  const std::string where = " at x = " + FormatNumber(x_atomic) + ", " + FormatNumber(lambda_nm) +
+                            " nm (" + value + ": not finite, zero or beyond 1e30)";
+  const std::string name = source_.empty() ? std::string() : source_ + ": ";
+  if (draw) {
+    throw Error(name + "a draw of the " + method() + " model's uncertainty gives no usable " +
+                "permittivity" + where + "; " + kUncertaintyTooWide);
+  }
+  throw Error(name + "the " + method() + " model gives no usable permittivity" + where +
+              "; its parameters cannot be used there");
 }
 
 namespace {
@@ -38,8 +101,14 @@ class GenericBoundModel : public BoundModel {
   GenericBoundModel(const AlloyModel& model, std::vector<double> lambda_nm)
       : BoundModel(std::move(lambda_nm)), model_(model) {}
   void Permittivity(double x_atomic, Complex<double>* eps) const override {
-    const std::vector<std::complex<double>> e = model_.Permittivity(x_atomic, lambda_nm());
-    for (size_t i = 0; i < e.size(); ++i) eps[i] = {e[i].real(), e[i].imag()};
+    const std::vector<std::complex<double>> e =
+        NamingSource(model_, [&] { return model_.Permittivity(x_atomic, lambda_nm()); });
+    for (size_t i = 0; i < e.size(); ++i) {
+      if (!UsablePermittivity(e[i].real(), e[i].imag())) {
+        model_.FailUnusable(x_atomic, lambda_nm()[i], e[i], false);
+      }
+      eps[i] = {e[i].real(), e[i].imag()};
+    }
   }
 
  private:
@@ -154,7 +223,7 @@ ParameterTable AlloyModel::Parameters(const std::vector<double>& xs) const {
   }
   for (double x : xs) {
     const double n_e = FreeElectronDensityM3(x, system_);
-    const auto draws = PermittivityDraws(x, lambda, kDraws);
+    const auto draws = CheckedDraws(x, lambda, kDraws);
     std::vector<ParameterTable::Quantity> row = {{n_e, 0.0}};
     for (size_t i = 0; i < lambda.size(); ++i) {
       DrudePoint p;
@@ -212,6 +281,7 @@ void AlloyModel::SetCommon(const Dataset& dataset, double lambda_min_nm,
     training_.push_back({s.x_atomic, s.x_given, s.file, s.checksum});
   }
   if (training_.empty()) throw Error(dataset.manifest_path + ": no samples");
+  source_ = dataset.manifest_path;
   x_min_ = training_.front().x_atomic;
   x_max_ = training_.back().x_atomic;
   lambda_min_nm_ = lambda_min_nm;
@@ -427,6 +497,46 @@ void AlloyModel::ReadCommon(const nlohmann::json& doc) {
   }
 }
 
+void CheckModelUsable(const AlloyModel& model) {
+  const std::string name = model.source().empty() ? std::string() : model.source() + ": ";
+  const double lo = model.lambda_min_nm(), hi = model.lambda_max_nm();
+  const std::vector<double> native = model.native_grid_nm();
+  if (!native.empty()) {
+    const double tolerance = 1e-9 * hi;
+    const auto [low, high] = std::minmax_element(native.begin(), native.end());
+    if (!(std::abs(*low - lo) <= tolerance && std::abs(*high - hi) <= tolerance)) {
+      throw Error(name + "parameters.lambda_nm: the grid runs " + FormatNumber(*low) + "-" +
+                  FormatNumber(*high) + " nm, not over lambda_range_nm [" + FormatNumber(lo) +
+                  ", " + FormatNumber(hi) + "]");
+    }
+  }
+  // The colour tables' grid held inside the range (as the colour commands evaluate it), or
+  // for a model outside the visible 101 wavelengths across its range; and the native grid.
+  std::vector<double> colour;
+  for (double l = 360.0; l <= 830.0; l += 5.0) colour.push_back(std::clamp(l, lo, hi));
+  if (hi < 360.0 || lo > 830.0) {
+    colour.clear();
+    for (int i = 0; i <= 100; ++i) colour.push_back(lo + (hi - lo) * i / 100.0);
+  }
+  std::vector<double> lambda = colour;
+  const size_t native_step = native.size() / 1000 + 1;
+  for (size_t i = 0; i < native.size(); i += native_step) lambda.push_back(native[i]);
+  std::vector<double> xs = {model.x_min(), model.x_max()};
+  const auto& training = model.training_samples();
+  const size_t training_step = training.size() / 25 + 1;
+  for (size_t i = 0; i < training.size(); i += training_step) {
+    if (training[i].x_atomic >= model.x_min() && training[i].x_atomic <= model.x_max()) {
+      xs.push_back(training[i].x_atomic);
+    }
+  }
+  for (double x : xs) model.Index(x, lambda);
+  if (model.HasUncertainty()) {
+    for (double x : {model.x_min(), 0.5 * (model.x_min() + model.x_max()), model.x_max()}) {
+      model.CheckedDraws(x, colour);
+    }
+  }
+}
+
 std::unique_ptr<AlloyModel> ModelFromJson(const nlohmann::json& doc,
                                           const std::string& source) {
   try {
@@ -443,7 +553,10 @@ std::unique_ptr<AlloyModel> ModelFromJson(const nlohmann::json& doc,
                   std::to_string(kModelFormatVersion) + ")");
     }
     const std::string method = String(Field(doc, "method", "model"), "method");
-    return RequireMethod(method).read(doc, source);
+    std::unique_ptr<AlloyModel> model = RequireMethod(method).read(doc, source);
+    model->set_source(source);
+    CheckModelUsable(*model);
+    return model;
   } catch (const nlohmann::json::exception& e) {
     throw Error(source + ": damaged model: " + e.what());
   } catch (const Error& e) {

@@ -8,6 +8,7 @@
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/grid.h"
 #include "alloycolor/core/io.h"
+#include "alloycolor/core/text.h"
 #include "alloycolor/core/units.h"
 #include "alloycolor/model/interpolation.h"
 #include "alloycolor/model/optics.h"
@@ -200,6 +201,15 @@ SampleModel::SampleModel(Kind kind, const nlohmann::json& doc, const std::string
             (j > 0 && !(node.nk.lambda_nm[j] > node.nk.lambda_nm[j - 1]))) {
           throw Error(where + ": bad row " + std::to_string(j));
         }
+      }
+      // The sample must hold eps over the whole stated range (no value made up past it).
+      const double tolerance = 1e-9 * lambda_max_nm();
+      if (node.nk.lambda_nm.front() > lambda_min_nm() + tolerance ||
+          node.nk.lambda_nm.back() < lambda_max_nm() - tolerance) {
+        throw Error(where + ".lambda_nm: covers " + FormatNumber(node.nk.lambda_nm.front()) + "-" +
+                    FormatNumber(node.nk.lambda_nm.back()) +
+                    " nm, not the whole lambda_range_nm [" + FormatNumber(lambda_min_nm()) + ", " +
+                    FormatNumber(lambda_max_nm()) + "]");
       }
       nodes_.push_back(std::move(node));
     } catch (const nlohmann::json::exception& e) {

@@ -142,7 +142,8 @@ class AlloyModel {
   virtual std::string method() const = 0;
 
   // eps at composition x_atomic for each wavelength (nm). Throws Error for a wavelength
-  // outside [lambda_min_nm(), lambda_max_nm()]. Never returns NaN.
+  // outside [lambda_min_nm(), lambda_max_nm()]. Never returns NaN (a method may return 0
+  // where it cannot compute eps: Index and the bound models refuse that).
   virtual std::vector<std::complex<double>> Permittivity(
       double x_atomic, const std::vector<double>& lambda_nm) const = 0;
 
@@ -150,7 +151,8 @@ class AlloyModel {
   // outside). The model must outlive the bound model.
   virtual std::unique_ptr<BoundModel> Bind(const std::vector<double>& lambda_nm) const;
 
-  // n + i k (eq. 13, 14 applied to Permittivity).
+  // n + i k (eq. 13, 14 applied to Permittivity). Throws Error naming source() where eps
+  // is not usable (UsablePermittivity), so that no output shows a made-up colour.
   std::vector<std::complex<double>> Index(double x_atomic,
                                           const std::vector<double>& lambda_nm) const;
 
@@ -165,6 +167,11 @@ class AlloyModel {
   // parameters' covariance), for propagating uncertainty to reflectance and colour.
   virtual bool HasUncertainty() const { return prediction_error_.present(); }
   virtual std::vector<std::vector<std::complex<double>>> PermittivityDraws(
+      double x_atomic, const std::vector<double>& lambda_nm, int count = kUncertaintyDraws,
+      std::uint32_t seed = kUncertaintySeed) const;
+  // PermittivityDraws with every value checked: throws Error naming source() and the
+  // uncertainty when a draw is not usable (an uncertainty too wide to propagate).
+  std::vector<std::vector<std::complex<double>>> CheckedDraws(
       double x_atomic, const std::vector<double>& lambda_nm, int count = kUncertaintyDraws,
       std::uint32_t seed = kUncertaintySeed) const;
 
@@ -202,6 +209,16 @@ class AlloyModel {
   // Throws Error naming x when it lies outside [x_min, x_max] (beyond 1e-9).
   void CheckInRange(double x_atomic) const;
 
+  // Where the model comes from: its file (ModelFromJson), or the manifest of the data set
+  // it was built from. Errors about using the model name it.
+  const std::string& source() const { return source_; }
+  void set_source(std::string source) { source_ = std::move(source); }
+
+  // Throws Error naming source(), the composition and the wavelength: eps there is not
+  // usable (`draw`: in a draw of the uncertainty).
+  [[noreturn]] void FailUnusable(double x_atomic, double lambda_nm, std::complex<double> eps,
+                                 bool draw) const;
+
  protected:
   // The method's own "parameters" block.
   virtual nlohmann::json ParametersJson() const = 0;
@@ -221,7 +238,27 @@ class AlloyModel {
   std::vector<std::string> warnings_;
   FitSummary fit_summary_;
   PredictionError prediction_error_;
+  std::string source_;
 };
+
+// The end of the message for a model whose uncertainty draws cannot be used.
+extern const char* const kUncertaintyTooWide;
+
+// The largest |eps1|, |eps2| the optics take: metals reach about 1e8 at 1 mm; beyond 1e30
+// the Fresnel terms (|eps|^2) would overflow.
+inline constexpr double kMaxUsablePermittivity = 1e30;
+
+// Whether eps can feed the Fresnel chain: finite, not exactly 0 (no material has
+// n = k = 0; the physical model returns 0 where its terms are not finite), and no larger
+// than kMaxUsablePermittivity.
+bool UsablePermittivity(double eps1, double eps2);
+
+// Throws Error naming model.source() unless the model can be used over its whole stated
+// range: a native grid (native_grid_nm) runs from lambda_range_nm[0] to [1]; eps is
+// usable at the ends of the x range and at the training compositions, at the colour
+// tables' 5 nm steps and the native grid; every uncertainty draw is usable at the ends and
+// the middle of the x range. ModelFromJson calls it on every file; `fit` before writing.
+void CheckModelUsable(const AlloyModel& model);
 
 // Reads a model file of any method; throws Error naming the file and the field for a
 // damaged file, another format, or an unknown version or method.

@@ -286,7 +286,7 @@ std::vector<std::complex<double>> PhysicalModel::Evaluate(double x_atomic,
   for (size_t i = 0; i < lambda_nm.size(); ++i) {
     const Complex<double> e =
         PhysicalPermittivity(layout_, values.data(), OmegaEvFromLambdaNm(lambda_nm[i]));
-    eps[i] = {std::isfinite(e.re) ? e.re : 0.0, std::isfinite(e.im) ? e.im : 0.0};
+    eps[i] = {e.re, e.im};  // a non-finite part stays so: every output refuses it by name
   }
   return eps;
 }

@@ -37,8 +37,8 @@ const std::vector<MethodInfo>& Methods() {
        "wavelength",
        &ReadSampleModel<SampleModel::Kind::kEpsSpline>},
       {"smooth",
-       "Ceres fit of ln gamma and ln wp^2 (tau, m*) as smooth functions of composition at "
-       "every wavelength",
+       "eps1 and eps2 fitted as monotone cubic curves of composition through knots at every "
+       "wavelength, a regression whose smoothing leave-one-composition-out chooses",
        &ReadModel<SmoothModel>},
       {"physical",
        "Ceres fit of a Drude + interband model whose parameters vary smoothly with "

@@ -264,11 +264,12 @@ def fit(dataset: Union[Dataset, str], method: str = "smooth", *, degree: Optiona
         progress: Optional[Callable[[str], None]] = None) -> Model:
     """Fits ``method`` (see :func:`methods`) to a data set, as ``alloycolor fit`` does.
 
-    degree: composition degree (default: the method's, or chosen by cross-validation);
-    max_degree: the largest degree cross-validation tries (smooth); smoothing: curvature
-    penalty across wavelength (smooth); terms: interband terms (physical);
-    lambda_range_nm: (from, to, step) of the fit grid; covariance: compute the parameter
-    covariance (error bars); progress: called with one-line messages."""
+    degree: composition degree (physical; default 2); max_degree: the largest degree
+    (physical); smoothing: roughness penalty across composition (smooth; default: chosen
+    by leave-one-composition-out, 0 interpolates); terms: interband terms (physical);
+    lambda_range_nm: (from, to, step) of the fit grid; covariance: compute the physical
+    fit's parameter covariance; progress: called with one-line messages. Every method
+    fitted to three compositions or more carries a cross-validated uncertainty."""
     if not isinstance(dataset, Dataset):
         dataset = Dataset(dataset)
     lo, hi, step = (0.0, 0.0, 0.0) if lambda_range_nm is None else map(float, lambda_range_nm)

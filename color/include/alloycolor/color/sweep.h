@@ -5,8 +5,8 @@
 // Exact evaluation. The wavelengths are the colorimeter's 5 nm grid held inside the model's
 // range (EvaluationGrid), the weights its normalised P(l) xbar(l) etc. The model is bound
 // to that grid once (AlloyModel::Bind), so a composition costs what the method needs to
-// evaluate eps there (for the smooth model, the Legendre basis and two dot products and two
-// exp per wavelength), then eq. 13-14 and eq. 2-4, with no allocation. The result equals
+// evaluate eps there (for the smooth model, one knot interval and two cubic Hermite sums
+// per wavelength), then eq. 13-14 and eq. 2-4, with no allocation. The result equals
 // MaterialXYZ(IndexOnGrid(...)) to rounding (|dXYZ| < 1e-12).
 //
 // Table. For long sweeps, XYZ is tabulated against x at uniform nodes between breakpoints

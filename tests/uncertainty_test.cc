@@ -1,0 +1,106 @@
+// The cross-validated prediction error (AlloyModel::PredictionError, fit::BuildModel):
+// the bump against its formula by hand, draws whose spread is the stated one (by many
+// draws, against the closed form), and which fits carry it.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <complex>
+
+#include "alloycolor/color/colorimetry.h"
+#include "alloycolor/color/material_color.h"
+#include "alloycolor/core/dataset.h"
+#include "alloycolor/core/error.h"
+#include "alloycolor/fit/methods.h"
+#include "alloycolor/model/sample_models.h"
+#include "test_util.h"
+
+namespace alloycolor {
+namespace {
+
+using testing::DataDir;
+
+PredictionError Example() {
+  PredictionError e;
+  e.lambda_nm = {400, 600, 800};
+  e.scale = {0.02, 0.04, 0.01};
+  e.compositions = {0.0, 0.25, 1.0};
+  e.reference_gap = 0.5;
+  e.calibration = 1.5;
+  e.folds = 1;
+  return e;
+}
+
+TEST(PredictionError, BumpAndScaleByHand) {
+  const PredictionError e = Example();
+  EXPECT_DOUBLE_EQ(e.Bump(0.0), 0.0);
+  EXPECT_DOUBLE_EQ(e.Bump(0.25), 0.0);
+  // x = 0.625 halfway in [0.25, 1]: 4 * 0.5 * 0.5 * 0.75 / 0.5.
+  EXPECT_DOUBLE_EQ(e.Bump(0.625), 1.5);
+  // x = 0.1 in [0, 0.25]: t = 0.4, 4 * 0.4 * 0.6 * 0.25 / 0.5.
+  EXPECT_NEAR(e.Bump(0.1), 0.48, 1e-15);
+  EXPECT_DOUBLE_EQ(e.ScaleAt(500), 0.03);
+  EXPECT_DOUBLE_EQ(e.ScaleAt(300), 0.02);
+  EXPECT_DOUBLE_EQ(e.ScaleAt(900), 0.01);
+}
+
+TEST(PredictionError, DrawsHaveTheStatedSpread) {
+  const Dataset data = LoadDataset(DataDir() + "/Au-Ag");
+  SampleModel model(SampleModel::Kind::kEpsLinear, data);
+  PredictionError e = Example();
+  e.compositions = {0.0, 0.5, 1.0};
+  model.set_prediction_error(e);
+  const double x = 0.3;  // t = 0.6 in [0, 0.5]: B = 4 * 0.6 * 0.4 * 0.5 / 0.5 = 0.96
+  const std::vector<double> lambda = {450.0, 600.0};
+  const auto centre = model.Permittivity(x, lambda);
+  const auto draws = model.PermittivityDraws(x, lambda, 20000, 7);
+  ASSERT_EQ(draws.size(), 20000u);
+  for (size_t i = 0; i < lambda.size(); ++i) {
+    double sum_sq = 0;
+    for (const auto& d : draws) sum_sq += std::norm(d[i] - centre[i]);
+    // E|delta|^2 = (calibration * scale * B * |eps|)^2 (eps2 clamping is rare here).
+    const double expected = 1.5 * e.ScaleAt(lambda[i]) * 0.96 * std::abs(centre[i]);
+    EXPECT_NEAR(std::sqrt(sum_sq / draws.size()), expected, 0.03 * expected) << lambda[i];
+  }
+  EXPECT_TRUE(model.PermittivityDraws(0.5, lambda).size() == kUncertaintyDraws);
+  EXPECT_EQ(model.PermittivityDraws(0.5, lambda)[0], model.Permittivity(0.5, lambda));
+}
+
+TEST(PredictionError, BadValuesAreRefusedByName) {
+  const Dataset data = LoadDataset(DataDir() + "/Au-Ag");
+  SampleModel model(SampleModel::Kind::kEpsLinear, data);
+  PredictionError e = Example();
+  e.calibration = 0;
+  EXPECT_THROW(model.set_prediction_error(e), Error);
+  e = Example();
+  e.scale[1] = std::nan("");
+  EXPECT_THROW(model.set_prediction_error(e), Error);
+  e = Example();
+  e.compositions = {0.5, 0.2};
+  EXPECT_THROW(model.set_prediction_error(e), Error);
+}
+
+TEST(PredictionError, FitsOfThreeCompositionsOrMoreCarryItAndTheFileKeepsIt) {
+  const Dataset all = LoadDataset(DataDir() + "/Au-Ag");
+  const color::Colorimeter cm = color::Colorimeter::Load(DataDir(), "D65", 2);
+  fit::FitSettings settings;
+  settings.colorimeter = &cm;
+  const auto two = fit::BuildModel("eps-pchip", WithoutSamples(all, {0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9}), settings);
+  EXPECT_FALSE(two->HasUncertainty());
+  const auto model = fit::BuildModel("eps-pchip", all, settings);
+  ASSERT_TRUE(model->HasUncertainty());
+  const PredictionError& e = model->prediction_error();
+  EXPECT_EQ(e.folds, 9);
+  EXPECT_NEAR(e.reference_gap, 0.2, 1e-12);
+  EXPECT_GT(e.calibration, 0.0);
+  // Zero at a training composition, positive between.
+  EXPECT_EQ(color::DeltaE00Sigma(cm, *model, 0.3, 0.0), 0.0);
+  EXPECT_GT(color::DeltaE00Sigma(cm, *model, 0.35, 0.0), 0.0);
+  const auto back = ModelFromJson(model->ToJson(), "mem");
+  EXPECT_EQ(back->prediction_error().scale, e.scale);
+  EXPECT_EQ(back->prediction_error().calibration, e.calibration);
+  settings.calibrate = false;
+  EXPECT_FALSE(fit::BuildModel("eps-pchip", all, settings)->HasUncertainty());
+}
+
+}  // namespace
+}  // namespace alloycolor

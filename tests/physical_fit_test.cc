@@ -272,6 +272,35 @@ class AuAg : public ::testing::Test {
 Dataset* AuAg::dataset_ = nullptr;
 PhysicalModel* AuAg::model_ = nullptr;
 
+// Checked here on a dense grid apart from the fit's own check: passive, n and k bounded.
+TEST_F(AuAg, StaysPassiveAndBoundedEverywhereInItsRange) {
+  const std::vector<double> grid = UniformGrid(300, 1000, 2.5);
+  for (int i = 0; i <= 400; ++i) {
+    const double x = i / 400.0;
+    const auto eps = model_->Permittivity(x, grid);
+    for (size_t j = 0; j < grid.size(); ++j) {
+      ASSERT_GE(eps[j].imag(), 0.0) << x << " " << grid[j];
+      const std::complex<double> nk = std::sqrt(eps[j]);
+      ASSERT_LE(std::max(nk.real(), nk.imag()), 50.0) << x << " " << grid[j];
+    }
+  }
+}
+
+// Querry's zinc (eps1 > 1 across the visible) drives every degree's fit to eps2 < 0
+// between the samples: refused, naming the data set and where.
+TEST(PhysicalFit, AFitThatIsNotPassiveIsRefusedNamingWhere) {
+  try {
+    fit::FitPhysical(LoadDataset(DataDir() + "/Cu-Zn"), fit::PhysicalFitOptions{});
+    FAIL() << "the fit was accepted";
+  } catch (const Error& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("Cu-Zn/dataset.json"), std::string::npos) << m;
+    EXPECT_NE(m.find("not passive"), std::string::npos) << m;
+    EXPECT_NE(m.find(" at x = "), std::string::npos) << m;
+    EXPECT_NE(m.find("lower degrees tried too"), std::string::npos) << m;
+  }
+}
+
 TEST_F(AuAg, ReproducesEverySampleFrom300To1000nm) {
   EXPECT_EQ(model_->fit_summary().details["terms"], "rioux-gap,rioux-edge");
   EXPECT_EQ(model_->lambda_min_nm(), 300.0);

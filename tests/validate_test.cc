@@ -381,5 +381,31 @@ TEST(AutoMethod, ChoosesTheLowestLeaveOneOutScoreAndRecordsTheTable) {
   EXPECT_NE(selection["reason"].get<std::string>().find(chosen), std::string::npos);
 }
 
+// A method that fails on every split (the physical fit refuses Querry's zinc) is reported
+// failed beside the others; the printed coverage counts agree with report.json.
+TEST(Validate, AMethodFailingEverywhereIsReportedBesideTheOthers) {
+  const std::string out = MakeTempDir() + "/r";
+  const RunResult r = RunProgram({"validate", "--data", DataDir() + "/Cu-Zn", "--methods",
+                                  "eps-linear,physical", "--angles", "0", "--quiet", "--out", out});
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::ifstream in(out + "/report.json");
+  const nlohmann::json report = nlohmann::json::parse(in);
+  for (const auto& h : report["holdouts"]) {
+    EXPECT_TRUE(h["results"]["eps-linear"]["delta_e00"]["0"].is_number());
+  }
+  bool physical_error = false;
+  for (const auto& s : report["splits"]) {
+    physical_error |= s.contains("errors") && s["errors"].contains("physical");
+  }
+  EXPECT_TRUE(physical_error) << report["splits"].dump();
+  const auto& cell = report["sigma_honesty"]["eps-linear"]["0"];
+  const std::string expected = std::to_string(cell["within_1_sigma"].get<int>()) + "/" +
+                               std::to_string(cell["count"].get<int>());
+  const size_t row = r.out.find("in_1sigma_0");
+  ASSERT_NE(row, std::string::npos) << r.out;
+  EXPECT_NE(r.out.substr(row, r.out.find('\n', row) - row).find(expected), std::string::npos)
+      << r.out;
+}
+
 }  // namespace
 }  // namespace alloycolor

@@ -89,13 +89,18 @@ const std::vector<MethodBuilder>& Builders() {
 
 namespace {
 
-// The compositions held out to estimate the prediction error: the interior ones, 20 at
-// most, spread by rank.
-std::vector<double> ErrorFolds(const Dataset& dataset) {
+std::vector<double> DistinctCompositions(const Dataset& dataset) {
   std::vector<double> xs;
   for (const Sample& s : dataset.samples) xs.push_back(s.x_atomic);
   std::sort(xs.begin(), xs.end());
   xs.erase(std::unique(xs.begin(), xs.end()), xs.end());
+  return xs;
+}
+
+// The compositions held out to estimate the prediction error: the interior ones, 20 at
+// most, spread by rank.
+std::vector<double> ErrorFolds(const Dataset& dataset) {
+  const std::vector<double> xs = DistinctCompositions(dataset);
   if (xs.size() < 3) return {};
   std::vector<double> interior(xs.begin() + 1, xs.end() - 1);
   constexpr size_t kMaxFolds = 20;
@@ -105,14 +110,6 @@ std::vector<double> ErrorFolds(const Dataset& dataset) {
     folds.push_back(interior[f * (interior.size() - 1) / (kMaxFolds - 1)]);
   }
   return folds;
-}
-
-std::vector<double> DistinctCompositions(const Dataset& dataset) {
-  std::vector<double> xs;
-  for (const Sample& s : dataset.samples) xs.push_back(s.x_atomic);
-  std::sort(xs.begin(), xs.end());
-  xs.erase(std::unique(xs.begin(), xs.end()), xs.end());
-  return xs;
 }
 
 void EstimatePredictionError(const std::string& method, const Dataset& dataset,

@@ -15,11 +15,13 @@
 #include <vector>
 
 #include "alloycolor/color/material_color.h"
+#include "alloycolor/color/reflectance_arrays.h"
 #include "alloycolor/core/dataset.h"
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/io.h"
 #include "alloycolor/fit/physical_fit.h"
 #include "alloycolor/fit/smooth_fit.h"
+#include "alloycolor/model/optics.h"
 #include "alloycolor/model/sample_models.h"
 #include "test_util.h"
 
@@ -82,6 +84,8 @@ TEST(ColorSweep, FastPathsEqualTheScalarPathRelatively) {
     std::vector<std::unique_ptr<AlloyModel>> models;
     models.push_back(std::make_unique<SampleModel>(SampleModel::Kind::kPaper, dataset));
     models.push_back(std::make_unique<SampleModel>(SampleModel::Kind::kEpsLinear, dataset));
+    models.push_back(std::make_unique<SampleModel>(SampleModel::Kind::kEpsPchip, dataset));
+    models.push_back(std::make_unique<SampleModel>(SampleModel::Kind::kEpsSpline, dataset));
     fit::SmoothFitOptions smooth;
     models.push_back(std::move(fit::FitSmooth(dataset, smooth).model));
     // The physical fit refuses Querry's zinc (not passive between the samples): it takes
@@ -106,15 +110,62 @@ TEST(ColorSweep, FastPathsEqualTheScalarPathRelatively) {
       }
       const std::vector<double> grid = {380, 402.5, 455, 600, 707.3, 780};
       const std::unique_ptr<BoundModel> bound = model->Bind(grid);
-      std::vector<Complex<double>> eps(grid.size());
       for (double x : {0.0, 0.1, 0.33, 0.7, 1.0}) {
-        bound->Permittivity(x, eps.data());
+        const std::vector<Complex<double>> eps = bound->Permittivity(x);
         const std::vector<std::complex<double>> expected = model->Permittivity(x, grid);
         for (size_t i = 0; i < grid.size(); ++i) {
           SCOPED_TRACE(set + " " + model->method() + " x " + std::to_string(x) + " at " +
                        std::to_string(grid[i]) + " nm");
           EXPECT_LE(std::abs(std::complex<double>(eps[i].re, eps[i].im) - expected[i]),
                     1e-12 * std::abs(expected[i]));
+        }
+      }
+    }
+  }
+}
+
+// The array form of the Fresnel step, rearranged to save divisions, equals
+// FresnelReflectance of IndexFromPermittivity (optics.h) at every kind of eps: metals,
+// dielectrics, eps2 < 0, eps = 0 (N = 0) and eps = sin^2 (S = 0, a 0/0 limit), |eps|
+// up to 1e24; on runs of 1 to 9 wavelengths (the SIMD body and its remainder), one
+// weight 1 at a time so each sum is one R.
+TEST(ReflectanceSums, EqualFresnelReflectanceOfTheIndex) {
+  std::vector<Complex<double>> eps = {{-30, 1.5},  {-1.2, 5.8},  {2.25, 0},    {2.25, 1e-9},
+                                      {0.5, 0.1},  {0, 0},       {0, 3},       {-4, 0},
+                                      {1, 0},      {-11, -0.7},  {1e-300, 0},  {-1e12, 3e11},
+                                      {1e24, 1e23}, {0.75, 0},   {0.75, 1e-12}, {0.25, 0}};
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> e1(-60, 10), e2(0, 20);
+  for (int i = 0; i < 200; ++i) eps.push_back({e1(rng), e2(rng)});
+  for (double angle : {0.0, 30.0, 60.0, 89.0, 90.0}) {
+    const double c = std::max(std::cos(angle * M_PI / 180.0), 0.0);
+    // eps = sin^2 at this angle too.
+    std::vector<Complex<double>> all = eps;
+    all.push_back({1 - c * c, 0});
+    for (size_t run = 1; run <= 9; ++run) {
+      for (size_t start = 0; start + run <= all.size(); start += run) {
+        std::vector<double> e1s, e2s;
+        for (size_t i = start; i < start + run; ++i) {
+          e1s.push_back(all[i].re);
+          e2s.push_back(all[i].im);
+        }
+        for (size_t one = 0; one < run; ++one) {
+          std::vector<double> w(run, 0.0), zero(run, 0.0);
+          w[one] = 1.0;
+          double sums[3];
+          color::ReflectanceSums(run, e1s.data(), e2s.data(), c, angle == 0.0, w.data(),
+                                 zero.data(), w.data(), sums);
+          const Complex<double> e = all[start + one];
+          const double expected = FresnelReflectance(IndexFromPermittivity(e), c).Average();
+          SCOPED_TRACE("eps " + std::to_string(e.re) + " + " + std::to_string(e.im) +
+                       "i at " + std::to_string(angle) + " degrees");
+          // At eps = sin^2 (S = 0) dR/deps diverges: the reference's N^2, one rounding
+          // away from eps, gives S ~ 1e-8 and moves R by about 2 S / cos there; both meet
+          // the limit R = 1.
+          const double off = std::hypot(e.re - (1 - c * c), e.im);
+          EXPECT_NEAR(sums[0], expected, off < 1e-6 ? 1e-7 / c : 1e-12 * expected + 1e-15);
+          EXPECT_EQ(sums[1], 0.0);
+          EXPECT_EQ(sums[2], sums[0]);
         }
       }
     }

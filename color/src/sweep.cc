@@ -1,6 +1,5 @@
 #include "alloycolor/color/sweep.h"
 
-#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -9,7 +8,7 @@
 #include "alloycolor/color/material_color.h"
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/units.h"
-#include "alloycolor/model/optics.h"
+#include "alloycolor/color/reflectance_arrays.h"
 
 namespace alloycolor::color {
 namespace {
@@ -42,52 +41,17 @@ ColorSweep::ColorSweep(const Colorimeter& colorimeter, const AlloyModel& model, 
   grid_nm_ = EvaluationGrid(colorimeter, model.lambda_min_nm(), model.lambda_max_nm(),
                             "the " + model.method() + " model");
   bound_ = model.Bind(grid_nm_);
-  eps_.resize(grid_nm_.size());
-  for (Eigen::ArrayXd& a : s_) a.resize(static_cast<Eigen::Index>(grid_nm_.size()));
+  eps1_.resize(grid_nm_.size());
+  eps2_.resize(grid_nm_.size());
 }
 
 XYZ ColorSweep::ExactXYZ(double x_atomic) const {
-  bound_->Permittivity(x_atomic, eps_.data());
-  using Eigen::ArrayXd;
-  const Eigen::Index m = static_cast<Eigen::Index>(grid_nm_.size());
-  // Scratch arrays sized once in the constructor: assignments here never allocate.
-  ArrayXd &e1 = s_[0], &e2 = s_[1], &t = s_[2], &n = s_[3], &k = s_[4], &r = s_[5];
-  // eps1, eps2 out of the interleaved Complex<double> array.
-  e1 = Eigen::Map<const ArrayXd, 0, Eigen::InnerStride<2>>(&eps_[0].re, m);
-  e2 = Eigen::Map<const ArrayXd, 0, Eigen::InnerStride<2>>(&eps_[0].im, m);
-  // IndexFromPermittivity (eq. 13, 14), lane by lane: t is the larger of n, k.
-  r = (e1.square() + e2.square()).sqrt();  // |eps|
-  t = ((r + e1.abs()) * 0.5).sqrt();
-  n = (r == 0.0).select(0.0, (e1 >= 0.0).select(t, e2 / (2.0 * t)));
-  k = (r == 0.0).select(0.0, (e1 >= 0.0).select(e2 / (2.0 * t), t));
-  if (normal_) {
-    // NormalReflectance of the principal root of eps (as FresnelReflectance at cos = 1,
-    // which sees only N^2 = eps): n >= 0 even where a model gives eps2 < 0.
-    n = (r == 0.0).select(0.0, (e1 >= 0.0).select(t, e2.abs() / (2.0 * t)));
-    r = ((n - 1.0).square() + k.square()) / ((n + 1.0).square() + k.square());
-  } else {  // FresnelReflectance (eq. 2-4), the same operations on arrays
-    ArrayXd &n2re = s_[0], &n2im = s_[1], &zr = s_[2], &sre = s_[6], &sim = s_[7];
-    ArrayXd &rs = s_[8], &rp = s_[9];
-    const double c = cos_psi_;
-    const double sin2 = 1.0 - c * c;
-    n2re = n * n - k * k;
-    n2im = n * k + k * n;
-    zr = n2re - sin2;
-    r = (zr * zr + n2im * n2im).sqrt();  // |N^2 - sin^2|
-    // Sqrt(zr + i n2im): st = the larger part, in n (free from here on).
-    n = ((zr >= 0.0).select(r + zr, r - zr) * 0.5).sqrt();
-    sre = (r == 0.0).select(0.0, (zr >= 0.0).select(n, n2im.abs() / (2.0 * n)));
-    sim = (r == 0.0).select(0.0, (zr >= 0.0).select(n2im / (2.0 * n), (n2im < 0.0).select(-n, n)));
-    k = (c + sre).square() + sim.square();
-    rs = (k == 0.0).select(0.0, ((c - sre).square() + sim.square()) / k);
-    k = (c * n2re + sre).square() + (c * n2im + sim).square();
-    rp = (k == 0.0).select(rs, ((c * n2re - sre).square() + (c * n2im - sim).square()) / k);
-    r = (rs + rp) * 0.5;
-  }
-  using Weights = Eigen::Map<const ArrayXd>;
-  return {(Weights(colorimeter_.wx().data(), m) * r).sum(),
-          (Weights(colorimeter_.wy().data(), m) * r).sum(),
-          (Weights(colorimeter_.wz().data(), m) * r).sum()};
+  bound_->Permittivity(x_atomic, eps1_.data(), eps2_.data());
+  double sums[3];
+  ReflectanceSums(grid_nm_.size(), eps1_.data(), eps2_.data(), cos_psi_, normal_,
+                  colorimeter_.wx().data(), colorimeter_.wy().data(), colorimeter_.wz().data(),
+                  sums);
+  return {sums[0], sums[1], sums[2]};
 }
 
 bool ColorSweep::BuildSegment(double x_lo, double x_hi, int intervals, double tolerance,

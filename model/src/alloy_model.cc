@@ -100,14 +100,15 @@ class GenericBoundModel : public BoundModel {
  public:
   GenericBoundModel(const AlloyModel& model, std::vector<double> lambda_nm)
       : BoundModel(std::move(lambda_nm)), model_(model) {}
-  void Permittivity(double x_atomic, Complex<double>* eps) const override {
+  void Permittivity(double x_atomic, double* eps1, double* eps2) const override {
     const std::vector<std::complex<double>> e =
         NamingSource(model_, [&] { return model_.Permittivity(x_atomic, lambda_nm()); });
     for (size_t i = 0; i < e.size(); ++i) {
       if (!UsablePermittivity(e[i].real(), e[i].imag())) {
         model_.FailUnusable(x_atomic, lambda_nm()[i], e[i], false);
       }
-      eps[i] = {e[i].real(), e[i].imag()};
+      eps1[i] = e[i].real();
+      eps2[i] = e[i].imag();
     }
   }
 
@@ -116,6 +117,15 @@ class GenericBoundModel : public BoundModel {
 };
 
 }  // namespace
+
+std::vector<Complex<double>> BoundModel::Permittivity(double x_atomic) const {
+  const size_t m = lambda_nm_.size();
+  std::vector<double> eps1(m), eps2(m);
+  Permittivity(x_atomic, eps1.data(), eps2.data());
+  std::vector<Complex<double>> eps(m);
+  for (size_t i = 0; i < m; ++i) eps[i] = {eps1[i], eps2[i]};
+  return eps;
+}
 
 std::unique_ptr<BoundModel> AlloyModel::Bind(const std::vector<double>& lambda_nm) const {
   CheckLambda(lambda_nm);

@@ -6,14 +6,12 @@
 #include "alloycolor/core/error.h"
 
 namespace alloycolor {
-namespace {
 
-// Natural cubic spline slopes from the tridiagonal system for the second derivatives.
-std::vector<double> SplineSlopes(const std::vector<double>& x, const std::vector<double>& y) {
-  const size_t n = x.size();
+void NaturalSplineSlopes(const double* x, const double* y, size_t n, double* d) {
+  // The second derivatives from their tridiagonal system, m[0] = m[n-1] = 0.
   std::vector<double> h(n - 1);
   for (size_t i = 0; i + 1 < n; ++i) h[i] = x[i + 1] - x[i];
-  std::vector<double> m(n, 0.0);  // second derivatives, m[0] = m[n-1] = 0
+  std::vector<double> m(n, 0.0);
   if (n > 2) {
     std::vector<double> a(n, 0.0), b(n, 1.0), c(n, 0.0), r(n, 0.0);
     for (size_t i = 1; i + 1 < n; ++i) {
@@ -30,15 +28,11 @@ std::vector<double> SplineSlopes(const std::vector<double>& x, const std::vector
     m[n - 1] = r[n - 1] / b[n - 1];
     for (size_t i = n - 1; i-- > 0;) m[i] = (r[i] - c[i] * m[i + 1]) / b[i];
   }
-  std::vector<double> d(n);
   for (size_t i = 0; i + 1 < n; ++i) {
     d[i] = (y[i + 1] - y[i]) / h[i] - h[i] * (2 * m[i] + m[i + 1]) / 6;
   }
   d[n - 1] = (y[n - 1] - y[n - 2]) / h[n - 2] + h[n - 2] * (m[n - 2] + 2 * m[n - 1]) / 6;
-  return d;
 }
-
-}  // namespace
 
 Interpolant::Interpolant(Interpolation scheme, std::vector<double> xs, std::vector<double> ys)
     : xs_(std::move(xs)), ys_(std::move(ys)) {
@@ -56,7 +50,8 @@ Interpolant::Interpolant(Interpolation scheme, std::vector<double> xs, std::vect
       PchipSlopes(xs_.data(), ys_.data(), n, slopes_.data());
       break;
     case Interpolation::kNaturalSpline:
-      slopes_ = SplineSlopes(xs_, ys_);
+      slopes_.resize(n);
+      NaturalSplineSlopes(xs_.data(), ys_.data(), n, slopes_.data());
       break;
   }
   linear_ = scheme == Interpolation::kLinear;

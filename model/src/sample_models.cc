@@ -12,6 +12,8 @@
 #include "alloycolor/core/units.h"
 #include "alloycolor/model/interpolation.h"
 #include "alloycolor/model/optics.h"
+#include "alloycolor/core/simd.h"
+#include "hermite_bound_model.h"
 
 namespace alloycolor {
 namespace {
@@ -39,86 +41,140 @@ Bracket FindBracket(const std::vector<double>& xs, double x) {
   return {lo, hi, (x - xs[lo]) / (xs[hi] - xs[lo])};
 }
 
-// A sample model bound to a grid (SampleModel::Bind). Per wavelength i it keeps every
-// sample's eps and, for the paper method, the compositions, tau and m* of the samples that
-// can be inverted there, so Permittivity repeats PaperAt / EpsLinearAt with the same
-// arithmetic and none of the per-wavelength interpolation, inversion or allocation.
-class BoundSampleModel : public BoundModel {
+// DrudePermittivity(omega, EffectiveMassRatio(n_e, mass), GammaEvFromTauFs(tau)) with
+// tau and mass interpolated linearly at t between two samples, on arrays, with one
+// division: wp^2 / (omega^2 + gamma^2) = c tau^2 / (mass ((omega tau)^2 + hbar^2)),
+// c = kPlasmaEv2M3 n_e.
+ALLOYCOLOR_SIMD_CLONES
+void PaperDrude(size_t m, double t, double c, const double* __restrict tau_lo,
+                const double* __restrict tau_hi, const double* __restrict mass_lo,
+                const double* __restrict mass_hi, const double* __restrict omega,
+                const double* __restrict inv_omega, double* __restrict eps1,
+                double* __restrict eps2) {
+  const double hbar = kHbarEvFs, hbar2 = kHbarEvFs * kHbarEvFs;
+  for (size_t i = 0; i < m; ++i) {
+    const double tau = tau_lo[i] + (tau_hi[i] - tau_lo[i]) * t;
+    const double mass = mass_lo[i] + (mass_hi[i] - mass_lo[i]) * t;
+    const double wt = omega[i] * tau;
+    const double inv = 1.0 / (mass * (wt * wt + hbar2));
+    eps1[i] = 1.0 - c * tau * tau * inv;
+    eps2[i] = c * hbar * tau * inv * inv_omega[i];
+  }
+}
+
+// The paper model bound to a grid (SampleModel::Bind). Per wavelength it keeps every
+// sample's eps and the compositions, tau and m* of the samples that can be inverted there,
+// so Permittivity repeats PaperAt with the same arithmetic and none of the per-wavelength
+// interpolation, inversion or allocation. At a wavelength where every sample is
+// invertible (for metals, all of the visible) a composition between two samples is one
+// pass of PaperDrude over the grid; the other wavelengths take the scalar path.
+class BoundPaperModel : public BoundModel {
  public:
   struct Invertible {  // the samples invertible at one wavelength, sorted by x
     std::vector<double> xs, taus, masses;
   };
-  BoundSampleModel(std::vector<double> lambda_nm, bool paper, std::vector<double> node_x,
-                   std::vector<Complex<double>> node_eps, std::vector<Invertible> invertible,
-                   AlloySystem system, double x_min, double x_max)
+  BoundPaperModel(std::vector<double> lambda_nm, std::vector<double> node_x,
+                  std::vector<Complex<double>> node_eps, std::vector<Invertible> invertible,
+                  AlloySystem system, double x_min, double x_max)
       : BoundModel(std::move(lambda_nm)),
-        paper_(paper),
         node_x_(std::move(node_x)),
         node_eps_(std::move(node_eps)),
         invertible_(std::move(invertible)),
         system_(std::move(system)),
         x_min_(x_min),
         x_max_(x_max) {
-    for (double l : this->lambda_nm()) omega_ev_.push_back(OmegaEvFromLambdaNm(l));
-    for (const Invertible& inv : invertible_) all_.push_back(inv.xs.size() == node_x_.size());
-  }
-
-  void Permittivity(double x, Complex<double>* eps) const override {
-    const size_t m = lambda_nm().size();
-    const Bracket all = FindBracket(node_x_, x);
-    if (!paper_) {
-      for (size_t i = 0; i < m; ++i) eps[i] = EpsLinear(all, i);
-      return;
+    const size_t m = this->lambda_nm().size(), nodes = node_x_.size();
+    for (double l : this->lambda_nm()) {
+      omega_ev_.push_back(OmegaEvFromLambdaNm(l));
+      inv_omega_ev_.push_back(1.0 / omega_ev_.back());
     }
-    const double n_e = FreeElectronDensityM3(x, system_);
-    const bool inside = x >= x_min_ && x <= x_max_;
+    // Node-major tau and m* at the regular wavelengths (1 elsewhere, never read).
+    taus_.assign(nodes * m, 1.0);
+    masses_.assign(nodes * m, 1.0);
     for (size_t i = 0; i < m; ++i) {
       const Invertible& inv = invertible_[i];
-      double tau, mass;
-      if (inv.xs.empty()) {
-        eps[i] = EpsLinear(all, i);
+      bool regular = inv.xs.size() == nodes && nodes >= 2;
+      for (size_t j = 0; regular && j < nodes; ++j) {
+        regular = inv.taus[j] > 0 && inv.masses[j] > 0;
+      }
+      all_.push_back(inv.xs.size() == nodes);
+      if (!regular) {
+        irregular_.push_back(i);
         continue;
       }
-      if (inv.xs.size() == 1) {
-        tau = inv.taus[0];
-        mass = inv.masses[0];
-      } else {
-        const Bracket b = all_[i] ? all : FindBracket(inv.xs, x);
-        if (inside && (b.t < 0 || b.t > 1)) {
-          const size_t nearest = b.t < 0 ? b.lo : b.hi;
-          tau = inv.taus[nearest];
-          mass = inv.masses[nearest];
-        } else {
-          tau = inv.taus[b.lo] + (inv.taus[b.hi] - inv.taus[b.lo]) * b.t;
-          mass = inv.masses[b.lo] + (inv.masses[b.hi] - inv.masses[b.lo]) * b.t;
-          if (!(tau > 0) || !(mass > 0)) {
-            const size_t nearest = b.t < 0.5 ? b.lo : b.hi;
-            tau = inv.taus[nearest];
-            mass = inv.masses[nearest];
-          }
-        }
+      for (size_t j = 0; j < nodes; ++j) {
+        taus_[j * m + i] = inv.taus[j];
+        masses_[j * m + i] = inv.masses[j];
       }
-      eps[i] =
-          DrudePermittivity(omega_ev_[i], EffectiveMassRatio(n_e, mass), GammaEvFromTauFs(tau));
+    }
+  }
+
+  void Permittivity(double x, double* eps1, double* eps2) const override {
+    const size_t m = lambda_nm().size();
+    const Bracket all = FindBracket(node_x_, x);
+    const double n_e = FreeElectronDensityM3(x, system_);
+    const bool between = all.t >= 0 && all.t <= 1;
+    if (between) {
+      PaperDrude(m, all.t, kPlasmaEv2M3 * n_e, &taus_[all.lo * m], &taus_[all.hi * m],
+                 &masses_[all.lo * m], &masses_[all.hi * m], omega_ev_.data(),
+                 inv_omega_ev_.data(), eps1, eps2);
+      for (size_t i : irregular_) Scalar(x, n_e, all, i, eps1, eps2);
+    } else {
+      for (size_t i = 0; i < m; ++i) Scalar(x, n_e, all, i, eps1, eps2);
     }
   }
 
  private:
-  Complex<double> EpsLinear(const Bracket& b, size_t i) const {
-    const size_t m = lambda_nm().size();
-    const Complex<double>& lo = node_eps_[b.lo * m + i];
-    const Complex<double>& hi = node_eps_[b.hi * m + i];
-    if (b.t == 0.0) return lo;
-    if (b.t == 1.0) return hi;
-    return {lo.re + (hi.re - lo.re) * b.t, lo.im + (hi.im - lo.im) * b.t};
+  // PaperAt at wavelength i.
+  void Scalar(double x, double n_e, const Bracket& all, size_t i, double* eps1,
+              double* eps2) const {
+    const Invertible& inv = invertible_[i];
+    const bool inside = x >= x_min_ && x <= x_max_;
+    double tau, mass;
+    if (inv.xs.empty()) {
+      const size_t m = lambda_nm().size();
+      const Complex<double>& lo = node_eps_[all.lo * m + i];
+      const Complex<double>& hi = node_eps_[all.hi * m + i];
+      const Complex<double> e = all.t == 0.0   ? lo
+                                : all.t == 1.0 ? hi
+                                               : Complex<double>{lo.re + (hi.re - lo.re) * all.t,
+                                                                 lo.im + (hi.im - lo.im) * all.t};
+      eps1[i] = e.re;
+      eps2[i] = e.im;
+      return;
+    }
+    if (inv.xs.size() == 1) {
+      tau = inv.taus[0];
+      mass = inv.masses[0];
+    } else {
+      const Bracket b = all_[i] ? all : FindBracket(inv.xs, x);
+      if (inside && (b.t < 0 || b.t > 1)) {
+        const size_t nearest = b.t < 0 ? b.lo : b.hi;
+        tau = inv.taus[nearest];
+        mass = inv.masses[nearest];
+      } else {
+        tau = inv.taus[b.lo] + (inv.taus[b.hi] - inv.taus[b.lo]) * b.t;
+        mass = inv.masses[b.lo] + (inv.masses[b.hi] - inv.masses[b.lo]) * b.t;
+        if (!(tau > 0) || !(mass > 0)) {
+          const size_t nearest = b.t < 0.5 ? b.lo : b.hi;
+          tau = inv.taus[nearest];
+          mass = inv.masses[nearest];
+        }
+      }
+    }
+    const Complex<double> e =
+        DrudePermittivity(omega_ev_[i], EffectiveMassRatio(n_e, mass), GammaEvFromTauFs(tau));
+    eps1[i] = e.re;
+    eps2[i] = e.im;
   }
 
-  bool paper_;
   std::vector<double> node_x_;
   std::vector<Complex<double>> node_eps_;  // node-major: node_eps_[node * m + i]
-  std::vector<Invertible> invertible_;     // per wavelength (paper only)
+  std::vector<Invertible> invertible_;     // per wavelength
   std::vector<bool> all_;                  // every sample invertible at wavelength i
-  std::vector<double> omega_ev_;
+  std::vector<size_t> irregular_;          // wavelengths PaperDrude does not cover
+  std::vector<double> taus_, masses_;      // node-major, as node_eps_
+  std::vector<double> omega_ev_, inv_omega_ev_;
   AlloySystem system_;
   double x_min_, x_max_;
 };
@@ -126,8 +182,6 @@ class BoundSampleModel : public BoundModel {
 }  // namespace
 
 std::unique_ptr<BoundModel> SampleModel::Bind(const std::vector<double>& lambda_nm) const {
-  // The cubic schemes are evaluated through Permittivity.
-  if (kind_ == Kind::kEpsPchip || kind_ == Kind::kEpsSpline) return AlloyModel::Bind(lambda_nm);
   CheckLambda(lambda_nm);
   const size_t m = lambda_nm.size();
   std::vector<double> node_x;
@@ -139,25 +193,53 @@ std::unique_ptr<BoundModel> SampleModel::Bind(const std::vector<double>& lambda_
       node_eps.push_back({e.real(), e.imag()});
     }
   }
-  std::vector<BoundSampleModel::Invertible> invertible;
-  if (kind_ == Kind::kPaper) {
-    invertible.resize(m);
-    for (size_t i = 0; i < m; ++i) {
-      const double omega = OmegaEvFromLambdaNm(lambda_nm[i]);
-      for (size_t j = 0; j < nodes_.size(); ++j) {
-        const Complex<double>& e = node_eps[j * m + i];
-        if (!DrudeInvertible(e.re, e.im)) continue;
-        const DrudePoint p = InvertDrude(omega, e.re, e.im);
-        invertible[i].xs.push_back(nodes_[j].x);
-        invertible[i].taus.push_back(TauFsFromGammaEv(p.gamma_ev));
-        invertible[i].masses.push_back(
-            EffectiveMassRatio(FreeElectronDensityM3(nodes_[j].x, system()), p.wp2_ev2));
+  if (kind_ != Kind::kPaper) {
+    // Per wavelength, the scheme's slopes through the samples' eps1 and eps2.
+    const size_t n = nodes_.size();
+    std::vector<HermiteBoundModel::Knot> knots(n);
+    for (HermiteBoundModel::Knot& k : knots) {
+      for (auto* v : {&k.eps1, &k.eps2, &k.slope1_below, &k.slope2_below, &k.slope1_above,
+                      &k.slope2_above}) {
+        v->resize(m);
       }
     }
+    std::vector<double> y1(n), y2(n), d1(n), d2(n);
+    for (size_t i = 0; i < m; ++i) {
+      for (size_t j = 0; j < n; ++j) {
+        y1[j] = knots[j].eps1[i] = node_eps[j * m + i].re;
+        y2[j] = knots[j].eps2[i] = node_eps[j * m + i].im;
+      }
+      if (kind_ == Kind::kEpsLinear) continue;  // evaluated as lines, no slopes
+      if (kind_ == Kind::kEpsPchip) {
+        PchipSlopes(node_x.data(), y1.data(), n, d1.data());
+        PchipSlopes(node_x.data(), y2.data(), n, d2.data());
+      } else {
+        NaturalSplineSlopes(node_x.data(), y1.data(), n, d1.data());
+        NaturalSplineSlopes(node_x.data(), y2.data(), n, d2.data());
+      }
+      for (size_t j = 0; j < n; ++j) {
+        knots[j].slope1_below[i] = knots[j].slope1_above[i] = d1[j];
+        knots[j].slope2_below[i] = knots[j].slope2_above[i] = d2[j];
+      }
+    }
+    return std::make_unique<HermiteBoundModel>(lambda_nm, std::move(node_x), std::move(knots),
+                                               kind_ == Kind::kEpsLinear);
   }
-  return std::make_unique<BoundSampleModel>(lambda_nm, kind_ == Kind::kPaper, std::move(node_x),
-                                            std::move(node_eps), std::move(invertible), system(),
-                                            x_min(), x_max());
+  std::vector<BoundPaperModel::Invertible> invertible(m);
+  for (size_t i = 0; i < m; ++i) {
+    const double omega = OmegaEvFromLambdaNm(lambda_nm[i]);
+    for (size_t j = 0; j < nodes_.size(); ++j) {
+      const Complex<double>& e = node_eps[j * m + i];
+      if (!DrudeInvertible(e.re, e.im)) continue;
+      const DrudePoint p = InvertDrude(omega, e.re, e.im);
+      invertible[i].xs.push_back(nodes_[j].x);
+      invertible[i].taus.push_back(TauFsFromGammaEv(p.gamma_ev));
+      invertible[i].masses.push_back(
+          EffectiveMassRatio(FreeElectronDensityM3(nodes_[j].x, system()), p.wp2_ev2));
+    }
+  }
+  return std::make_unique<BoundPaperModel>(lambda_nm, std::move(node_x), std::move(node_eps),
+                                           std::move(invertible), system(), x_min(), x_max());
 }
 
 SampleModel::SampleModel(Kind kind, const Dataset& dataset) : kind_(kind) {

@@ -6,27 +6,10 @@
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/io.h"
 #include "alloycolor/model/interpolation.h"
+#include "hermite_bound_model.h"
 
 namespace alloycolor {
 namespace {
-
-// Weights of y_lo, d_lo, y_hi, d_hi in HermiteAt (interpolation.h) at composition x, and
-// the interval: computed once per composition by the bound model.
-struct HermiteWeights {
-  size_t lo, hi;
-  double w[4];
-};
-
-HermiteWeights WeightsAt(const std::vector<double>& knots, double x) {
-  const size_t n = knots.size();
-  if (x <= knots.front()) return {0, 0, {1.0, x - knots.front(), 0.0, 0.0}};
-  if (x >= knots.back()) return {n - 1, n - 1, {1.0, x - knots.back(), 0.0, 0.0}};
-  const size_t hi = std::upper_bound(knots.begin(), knots.end(), x) - knots.begin();
-  const size_t lo = hi - 1;
-  const double h = knots[hi] - knots[lo], t = (x - knots[lo]) / h;
-  const double t2 = t * t, t3 = t2 * t;
-  return {lo, hi, {2 * t3 - 3 * t2 + 1, (t3 - 2 * t2 + t) * h, -2 * t3 + 3 * t2, (t3 - t2) * h}};
-}
 
 // Node bracket of wavelength l on the grid (clamped to it) and the weight of the upper node.
 struct NodeBracket {
@@ -40,47 +23,6 @@ NodeBracket BracketOf(const std::vector<double>& grid, double l) {
   hi = std::clamp<size_t>(hi, 1, grid.size() - 1);
   return {hi - 1, hi, (l - grid[hi - 1]) / (grid[hi] - grid[hi - 1])};
 }
-
-class BoundSmoothModel : public BoundModel {
- public:
-  BoundSmoothModel(const SmoothModel& model, std::vector<double> lambda_nm,
-                   const std::vector<std::vector<double>>& slope1,
-                   const std::vector<std::vector<double>>& slope2)
-      : BoundModel(std::move(lambda_nm)), knots_(model.knots_x()) {
-    const size_t k = knots_.size(), m = this->lambda_nm().size();
-    // Per wavelength and knot: eps1, slope1, eps2, slope2, interpolated in wavelength as
-    // SmoothModel::Permittivity interpolates its results (the sum is linear in them).
-    data_.resize(m * k * 4);
-    for (size_t i = 0; i < m; ++i) {
-      const NodeBracket b = BracketOf(model.grid_nm(), this->lambda_nm()[i]);
-      const auto lerp = [&](const std::vector<std::vector<double>>& v, size_t c) {
-        return v[b.lo][c] + (v[b.hi][c] - v[b.lo][c]) * b.t;
-      };
-      for (size_t c = 0; c < k; ++c) {
-        double* d = &data_[(i * k + c) * 4];
-        d[0] = lerp(model.eps1(), c);
-        d[1] = lerp(slope1, c);
-        d[2] = lerp(model.eps2(), c);
-        d[3] = lerp(slope2, c);
-      }
-    }
-  }
-
-  void Permittivity(double x_atomic, Complex<double>* eps) const override {
-    const HermiteWeights hw = WeightsAt(knots_, x_atomic);
-    const size_t k = knots_.size(), m = lambda_nm().size();
-    for (size_t i = 0; i < m; ++i) {
-      const double* lo = &data_[(i * k + hw.lo) * 4];
-      const double* hi = &data_[(i * k + hw.hi) * 4];
-      eps[i] = {hw.w[0] * lo[0] + hw.w[1] * lo[1] + hw.w[2] * hi[0] + hw.w[3] * hi[1],
-                hw.w[0] * lo[2] + hw.w[1] * lo[3] + hw.w[2] * hi[2] + hw.w[3] * hi[3]};
-    }
-  }
-
- private:
-  std::vector<double> knots_;
-  std::vector<double> data_;
-};
 
 }  // namespace
 
@@ -180,7 +122,26 @@ void SmoothModel::Validate(const std::string& source) {
 
 std::unique_ptr<BoundModel> SmoothModel::Bind(const std::vector<double>& lambda_nm) const {
   CheckLambda(lambda_nm);
-  return std::make_unique<BoundSmoothModel>(*this, lambda_nm, slope1_, slope2_);
+  // Each knot's values and slopes interpolated in wavelength as Permittivity interpolates
+  // its results (the Hermite sum is linear in them).
+  const size_t k = knots_x_.size(), m = lambda_nm.size();
+  std::vector<HermiteBoundModel::Knot> knots;
+  for (size_t c = 0; c < k; ++c) {
+    std::vector<double> e1(m), e2(m), d1(m), d2(m);
+    for (size_t i = 0; i < m; ++i) {
+      const NodeBracket b = BracketOf(grid_nm_, lambda_nm[i]);
+      const auto lerp = [&](const std::vector<std::vector<double>>& v) {
+        return v[b.lo][c] + (v[b.hi][c] - v[b.lo][c]) * b.t;
+      };
+      e1[i] = lerp(eps1_);
+      e2[i] = lerp(eps2_);
+      d1[i] = lerp(slope1_);
+      d2[i] = lerp(slope2_);
+    }
+    knots.push_back(HermiteBoundModel::KnotOf(std::move(e1), std::move(e2), std::move(d1),
+                                              std::move(d2)));
+  }
+  return std::make_unique<HermiteBoundModel>(lambda_nm, knots_x_, std::move(knots), false);
 }
 
 std::vector<double> SmoothModel::FittedCoefficients() const {

@@ -211,11 +211,12 @@ py::array_t<std::complex<double>> ModelOptics(const AlloyModel& model, const Arr
   {
     py::gil_scoped_release release;
     const std::unique_ptr<BoundModel> bound = model.Bind(lambda_nm);
-    std::vector<Complex<double>> eps(lambda_nm.size());
+    std::vector<double> eps1(lambda_nm.size()), eps2(lambda_nm.size());
     for (std::size_t i = 0; i < xs.size(); ++i) {
-      bound->Permittivity(xs[i], eps.data());
+      bound->Permittivity(xs[i], eps1.data(), eps2.data());
       for (std::size_t j = 0; j < lambda_nm.size(); ++j) {
-        const Complex<double> v = index ? IndexFromPermittivity(eps[j]) : eps[j];
+        const Complex<double> e{eps1[j], eps2[j]};
+        const Complex<double> v = index ? IndexFromPermittivity(e) : e;
         data[i * lambda_nm.size() + j] = {v.re, v.im};
       }
     }

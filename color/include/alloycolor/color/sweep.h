@@ -5,9 +5,10 @@
 // Exact evaluation. The wavelengths are the colorimeter's 5 nm grid held inside the model's
 // range (EvaluationGrid), the weights its normalised P(l) xbar(l) etc. The model is bound
 // to that grid once (AlloyModel::Bind), so a composition costs what the method needs to
-// evaluate eps there (for the smooth model, one knot interval and two cubic Hermite sums
-// per wavelength), then eq. 13-14 and eq. 2-4, with no allocation. The result equals
-// MaterialXYZ(IndexOnGrid(...)) to rounding (|dXYZ| < 1e-12).
+// evaluate eps there (for the interpolating methods, one knot interval and two cubic
+// Hermite sums per wavelength), then eq. 13-14 and eq. 2-4 on arrays in SIMD lanes
+// (AVX2 where the processor has it), with no allocation. The result equals
+// MaterialXYZ(IndexOnGrid(...)) to rounding (1e-12 relative, tested).
 //
 // Table. For long sweeps, XYZ is tabulated against x at uniform nodes between breakpoints
 // (the ends of the sweep and the training compositions inside it, where the paper and
@@ -19,7 +20,6 @@
 #ifndef ALLOYCOLOR_COLOR_SWEEP_H_
 #define ALLOYCOLOR_COLOR_SWEEP_H_
 
-#include <Eigen/Core>
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -71,8 +71,8 @@ class ColorSweep {
   double cos_psi_ = 1.0;
   bool normal_ = true;
   std::vector<double> grid_nm_;               // colorimeter grid held inside the model's range
-  mutable std::vector<Complex<double>> eps_;  // scratch: eps on grid_nm_
-  mutable std::array<Eigen::ArrayXd, 10> s_;  // scratch arrays on grid_nm_ (ExactXYZ)
+  // Scratch on grid_nm_ for ExactXYZ, sized once: eps1, eps2.
+  mutable std::vector<double> eps1_, eps2_;
   std::vector<Segment> segments_;
   double table_error_ = 0.0;
   int table_nodes_ = 0;

@@ -128,8 +128,13 @@ class BoundModel {
   explicit BoundModel(std::vector<double> lambda_nm) : lambda_nm_(std::move(lambda_nm)) {}
   virtual ~BoundModel() = default;
   const std::vector<double>& lambda_nm() const { return lambda_nm_; }
-  // eps at x_atomic on lambda_nm(): eps must hold lambda_nm().size() values.
-  virtual void Permittivity(double x_atomic, Complex<double>* eps) const = 0;
+  // eps1 and eps2 at x_atomic on lambda_nm(), each array holding lambda_nm().size()
+  // values: two arrays rather than one of complex numbers, so that the colour chain
+  // reads a run of wavelengths into each SIMD register. A method whose eps can be
+  // unusable there throws Error naming the model's source, as AlloyModel::Index does.
+  virtual void Permittivity(double x_atomic, double* eps1, double* eps2) const = 0;
+  // The same as complex numbers (allocates).
+  std::vector<Complex<double>> Permittivity(double x_atomic) const;
 
  private:
   std::vector<double> lambda_nm_;

@@ -64,6 +64,10 @@ T HermiteAt(const double* x, const T* y, const T* d, size_t n, double xq) {
          T(-2 * t3 + 3 * t2) * y[hi] + T((t3 - t2) * h) * d[hi];
 }
 
+// Slopes d[0..n) of the natural cubic spline through (x[i], y[i]), x strictly increasing,
+// n >= 2 (zero second derivative at the ends): its Hermite form.
+void NaturalSplineSlopes(const double* x, const double* y, size_t n, double* d);
+
 enum class Interpolation { kLinear, kPchip, kNaturalSpline };
 
 // A scheme fitted to (xs[i], ys[i]), xs strictly increasing, at least two points.

@@ -10,6 +10,7 @@
 #include "alloycolor/core/text.h"
 #include "alloycolor/core/io.h"
 #include "alloycolor/core/grid.h"
+#include "alloycolor/core/parallel.h"
 #include "alloycolor/fit/physical_fit.h"
 #include "alloycolor/fit/smooth_fit.h"
 #include "alloycolor/model/registry.h"
@@ -59,6 +60,7 @@ std::unique_ptr<AlloyModel> BuildPhysical(const Dataset& dataset, const FitSetti
   options.terms = settings.terms;
   options.covariance = settings.covariance;
   options.progress = settings.progress;
+  options.start = dynamic_cast<const PhysicalModel*>(settings.start);
   if (settings.lambda_from_nm != 0 || settings.lambda_to_nm != 0) {
     if (!(settings.lambda_from_nm > 0) || !(settings.lambda_to_nm > settings.lambda_from_nm)) {
       throw Error("--lambda-from/--lambda-to: need 0 < from < to");
@@ -112,51 +114,72 @@ std::vector<double> ErrorFolds(const Dataset& dataset) {
   return folds;
 }
 
-void EstimatePredictionError(const std::string& method, const Dataset& dataset,
-                             const FitSettings& settings, AlloyModel* model) {
-  const std::vector<double> folds = ErrorFolds(dataset);
-  if (folds.empty()) return;
+// One composition held out: the method built on the rest (null where it could not be),
+// the held-out samples, and what the prediction error needs of the fold.
+struct Fold {
+  double x = 0;
+  std::unique_ptr<AlloyModel> model;
+  std::string error;                 // why model is null
+  std::vector<const Sample*> held;
+  std::vector<double> compositions;  // of the fold's training samples
+  double bump = 0;                   // B(x) of the held-out composition, reference gap 1
+};
+
+// The method built without each of ErrorFolds in turn, in parallel. The physical fit of a
+// fold starts from `model` (warm): the same ends, so the same interband terms, which its
+// fits of the end samples chose, and coefficients near the fold's; it then converges on
+// the fold's own data. (`validate` refits each of its splits from scratch.)
+std::vector<Fold> FitFolds(const std::string& method, const Dataset& dataset,
+                           const FitSettings& settings, const AlloyModel& model) {
+  const std::vector<double> xs = ErrorFolds(dataset);
   FitSettings inner = settings;
   inner.calibrate = false;
   inner.progress = {};
-  inner.start = nullptr;
-  const double lo = model->lambda_min_nm(), hi = model->lambda_max_nm();
-  std::vector<double> grid;
-  for (int j = 0; j <= 80; ++j) grid.push_back(lo + (hi - lo) * j / 80.0);
-  struct Fold {
-    std::unique_ptr<AlloyModel> model;
-    std::vector<const Sample*> held;
-    std::vector<double> compositions;  // of the fold's training samples
-    double bump = 0;                   // B(x) of the held-out composition, reference gap 1
-  };
-  std::vector<Fold> done;
-  double gap_sum = 0;
-  for (double x : folds) {
-    Fold f;
-    const Dataset training = WithoutSamples(dataset, {x});
+  inner.start = method == "physical" ? &model : nullptr;
+  std::vector<Fold> folds(xs.size());
+  ParallelTasks(xs.size(), [&](size_t k) {
+    Fold& f = folds[k];
+    f.x = xs[k];
+    const Dataset training = WithoutSamples(dataset, {f.x});
     try {
       f.model = BuildModel(method, training, inner);
-    } catch (const Error&) {
-      continue;  // a fold the method cannot fit says nothing about the error
+    } catch (const Error& e) {
+      f.error = e.what();
+      return;
     }
     for (const Sample& s : dataset.samples) {
-      if (s.x_atomic == x) f.held.push_back(&s);
+      if (s.x_atomic == f.x) f.held.push_back(&s);
     }
     f.compositions = DistinctCompositions(training);
     PredictionError unit;
     unit.compositions = f.compositions;
-    f.bump = unit.Bump(x);
-    const size_t i = std::upper_bound(f.compositions.begin(), f.compositions.end(), x) -
+    f.bump = unit.Bump(f.x);
+  });
+  return folds;
+}
+
+// The prediction error (BuildModel) from the folds; sets each fold model's error too.
+void EstimatePredictionError(std::vector<Fold>& fitted, const Dataset& dataset,
+                             const FitSettings& settings, AlloyModel* model) {
+  const double lo = model->lambda_min_nm(), hi = model->lambda_max_nm();
+  std::vector<double> grid;
+  for (int j = 0; j <= 80; ++j) grid.push_back(lo + (hi - lo) * j / 80.0);
+  std::vector<Fold*> done;  // a fold the method cannot fit says nothing about the error
+  double gap_sum = 0;
+  for (Fold& f : fitted) {
+    if (!f.model) continue;
+    const size_t i = std::upper_bound(f.compositions.begin(), f.compositions.end(), f.x) -
                      f.compositions.begin();
     gap_sum += f.compositions[i] - f.compositions[i - 1];
-    done.push_back(std::move(f));
+    done.push_back(&f);
   }
   if (done.empty()) return;
   const double reference_gap = gap_sum / done.size();
   // scale[j]^2: mean over folds of (relative error / B)^2, B with the reference gap.
   std::vector<double> sum_sq(grid.size(), 0.0);
   int count = 0;
-  for (const Fold& f : done) {
+  for (const Fold* fp : done) {
+    const Fold& f = *fp;
     const double bump = f.bump / reference_gap;
     if (!(bump > 0)) continue;
     const auto predicted = f.model->Permittivity(f.held.front()->x_atomic, grid);
@@ -181,7 +204,8 @@ void EstimatePredictionError(const std::string& method, const Dataset& dataset,
     const color::Colorimeter& cm = *settings.colorimeter;
     double ratio_sq = 0;
     int ratios = 0;
-    for (Fold& f : done) {
+    for (Fold* fp : done) {
+      Fold& f = *fp;
       PredictionError fold_error = error;
       fold_error.compositions = f.compositions;
       f.model->set_prediction_error(fold_error);
@@ -207,19 +231,77 @@ void EstimatePredictionError(const std::string& method, const Dataset& dataset,
   model->set_prediction_error(std::move(error));
 }
 
+// `method` built on the data set; with `folds` (or settings.calibrate) the leave-one-out
+// folds too, and with settings.calibrate its prediction error from them.
+std::unique_ptr<AlloyModel> BuildWithFolds(const std::string& method, const Dataset& dataset,
+                                           const FitSettings& settings,
+                                           std::vector<Fold>* folds) {
+  RequireMethod(method);
+  for (const MethodBuilder& b : Builders()) {
+    if (b.name != method) continue;
+    std::unique_ptr<AlloyModel> model = b.build(dataset, settings);
+    std::vector<Fold> own;
+    if (folds == nullptr) folds = &own;
+    if (settings.calibrate || folds != &own) *folds = FitFolds(method, dataset, settings, *model);
+    if (settings.calibrate) EstimatePredictionError(*folds, dataset, settings, model.get());
+    return model;
+  }
+  throw Error("method '" + method + "' cannot be fitted to data");
+}
+
+// auto's score of a method: its folds' held-out samples scored as `validate` scores them
+// (ComputeValidation, given the folds' models), mean over the folds.
+MethodScore ScoreFolds(const std::string& method, const Dataset& dataset,
+                       std::vector<Fold>& folds, const color::Colorimeter& colorimeter,
+                       std::string* metric) {
+  MethodScore score;
+  score.method = method;
+  std::vector<std::vector<double>> splits;
+  for (const Fold& f : folds) splits.push_back({f.x});
+  validate::ValidationOptions options;
+  options.build = [&folds](const std::string&, const Dataset& training) {
+    for (Fold& f : folds) {
+      const bool held = std::none_of(training.samples.begin(), training.samples.end(),
+                                     [&](const Sample& s) { return s.x_atomic == f.x; });
+      if (!held) continue;
+      if (!f.model) throw Error(f.error);
+      return std::move(f.model);
+    }
+    throw Error("no fold holds out this split");
+  };
+  options.methods = {method};
+  options.angles_deg = {0.0};
+  options.mode = "loo";
+  options.sigma_draws = 0;
+  const validate::ValidationReport report =
+      validate::ComputeValidation(dataset, splits, colorimeter, options, {});
+  double sum = 0;
+  for (const auto& h : report.holdouts) {
+    const auto it = h.results.find(method);
+    if (it == h.results.end() || !it->second.error.empty()) continue;
+    const validate::MethodResult& r = it->second;
+    const double v = !r.delta_e00.empty() ? r.delta_e00[0] : r.reflectance_rms;
+    if (!std::isfinite(v)) continue;
+    sum += v;
+    score.max = score.folds == 0 ? v : std::max(score.max, v);
+    ++score.folds;
+    if (!r.delta_e00.empty()) *metric = "delta_e00 at normal incidence";
+  }
+  if (score.folds < static_cast<int>(splits.size())) {
+    score.error = "failed on " + std::to_string(splits.size() - score.folds) + " of " +
+                  std::to_string(splits.size()) + " folds";
+  } else {
+    score.mean = sum / score.folds;
+  }
+  return score;
+}
+
 }  // namespace
 
 std::unique_ptr<AlloyModel> BuildModel(const std::string& method, const Dataset& dataset,
                                        const FitSettings& settings) {
   if (method == kAutoMethod) return BuildAuto(dataset, settings);
-  RequireMethod(method);
-  for (const MethodBuilder& b : Builders()) {
-    if (b.name != method) continue;
-    std::unique_ptr<AlloyModel> model = b.build(dataset, settings);
-    if (settings.calibrate) EstimatePredictionError(method, dataset, settings, model.get());
-    return model;
-  }
-  throw Error("method '" + method + "' cannot be fitted to data");
+  return BuildWithFolds(method, dataset, settings, nullptr);
 }
 
 constexpr double kAutoTolerance = 1.10;
@@ -228,85 +310,71 @@ std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings&
   // Simplest first: ties go to the earlier.
   const std::vector<std::string> order = {"eps-pchip", "eps-linear", "eps-spline",
                                           "paper",     "smooth",     "physical"};
-  MethodSelection selection;
-  std::vector<std::vector<double>> splits;
-  for (size_t i = 1; i + 1 < dataset.samples.size(); ++i) {
-    splits.push_back({dataset.samples[i].x_atomic});
-  }
-  std::string chosen = "eps-pchip";
   if (settings.colorimeter == nullptr) throw Error("auto: no colorimeter to score colours with");
-  if (splits.empty()) {
+  MethodSelection selection;
+  const size_t held_out = ErrorFolds(dataset).size();
+  if (held_out == 0) {
     selection.metric = "none";
-    selection.reason = "eps-pchip: " + std::to_string(dataset.samples.size()) +
+    selection.reason = "eps-pchip: " + std::to_string(DistinctCompositions(dataset).size()) +
                        " compositions leave none to hold out (every interpolation is then the "
                        "straight line between the samples)";
-  } else {
-    FitSettings inner = settings;
-    inner.progress = {};
-    inner.start = nullptr;
-    inner.calibrate = false;
-    validate::ValidationOptions options;
-    options.build = [&inner](const std::string& method, const Dataset& training) {
-      return BuildModel(method, training, inner);
-    };
-    options.angles_deg = {0.0};
-    options.mode = "loo";
-    options.sigma_draws = 0;
-    double best = 1e300;
-    const MethodScore* best_score = nullptr;
-    for (const std::string& method : order) {
-      Report(settings.progress, "auto: scoring " + method + " by leave-one-out over " +
-                                    std::to_string(splits.size()) + " interior samples");
-      options.methods = {method};
-      MethodScore score;
-      score.method = method;
-      try {
-        const validate::ValidationReport report =
-            validate::ComputeValidation(dataset, splits, *settings.colorimeter, options, {});
-        double sum = 0;
-        for (const auto& h : report.holdouts) {
-          const auto it = h.results.find(method);
-          if (it == h.results.end() || !it->second.error.empty()) continue;
-          const validate::MethodResult& r = it->second;
-          const double v = !r.delta_e00.empty() ? r.delta_e00[0] : r.reflectance_rms;
-          if (!std::isfinite(v)) continue;
-          sum += v;
-          score.max = score.folds == 0 ? v : std::max(score.max, v);
-          ++score.folds;
-          if (!r.delta_e00.empty()) selection.metric = "delta_e00 at normal incidence";
-        }
-        if (score.folds < static_cast<int>(splits.size())) {
-          score.error = "failed on " + std::to_string(splits.size() - score.folds) + " of " +
-                        std::to_string(splits.size()) + " folds";
-        } else {
-          score.mean = sum / score.folds;
-        }
-      } catch (const Error& e) {
-        score.error = e.what();
-      }
-      selection.scores.push_back(score);
-    }
-    if (selection.metric.empty()) selection.metric = "reflectance_rms at normal incidence";
-    // The simplest method within kAutoTolerance of the lowest score: leave-one-out with few
-    // samples flatters the flexible methods.
-    for (const MethodScore& s : selection.scores) {
-      if (s.error.empty()) best = std::min(best, s.mean);
-    }
-    for (const MethodScore& s : selection.scores) {
-      if (s.error.empty() && s.mean <= best * kAutoTolerance) {
-        best_score = &s;
-        break;
-      }
-    }
-    if (best_score == nullptr) throw Error(dataset.manifest_path + ": auto: no method could be scored");
-    chosen = best_score->method;
-    char reason[160];
-    std::snprintf(reason, sizeof reason, "%s: lowest leave-one-out mean %s, %.4g over %d folds",
-                  chosen.c_str(), selection.metric.c_str(), best_score->mean, best_score->folds);
-    selection.reason = reason;
+    Report(settings.progress, "auto: " + selection.reason);
+    std::unique_ptr<AlloyModel> model = BuildModel("eps-pchip", dataset, settings);
+    FitSummary summary = model->fit_summary();
+    summary.selection = selection;
+    model->set_fit_summary(std::move(summary));
+    return model;
   }
+  // Every candidate built on all samples with its folds (which also give its prediction
+  // error): the folds score it, and the chosen one is already built.
+  FitSettings inner = settings;
+  inner.progress = {};
+  inner.start = nullptr;
+  std::vector<std::unique_ptr<AlloyModel>> models;
+  for (const std::string& method : order) {
+    Report(settings.progress, "auto: scoring " + method + " by leave-one-out over " +
+                                  std::to_string(held_out) + " interior compositions");
+    MethodScore score;
+    score.method = method;
+    std::unique_ptr<AlloyModel> model;
+    try {
+      std::vector<Fold> folds;
+      model = BuildWithFolds(method, dataset, inner, &folds);
+      score = ScoreFolds(method, dataset, folds, *settings.colorimeter, &selection.metric);
+    } catch (const Error& e) {
+      score.error = e.what();
+      model.reset();
+    }
+    if (!score.error.empty()) model.reset();
+    selection.scores.push_back(score);
+    models.push_back(std::move(model));
+  }
+  if (selection.metric.empty()) selection.metric = "reflectance_rms at normal incidence";
+  // The simplest method within kAutoTolerance of the lowest score: leave-one-out with few
+  // samples flatters the flexible methods.
+  double best = 1e300;
+  for (const MethodScore& s : selection.scores) {
+    if (s.error.empty()) best = std::min(best, s.mean);
+  }
+  size_t chosen = order.size();
+  for (size_t i = 0; i < selection.scores.size(); ++i) {
+    const MethodScore& s = selection.scores[i];
+    if (s.error.empty() && s.mean <= best * kAutoTolerance) {
+      chosen = i;
+      break;
+    }
+  }
+  if (chosen == order.size()) {
+    throw Error(dataset.manifest_path + ": auto: no method could be scored");
+  }
+  const MethodScore& best_score = selection.scores[chosen];
+  char reason[160];
+  std::snprintf(reason, sizeof reason, "%s: lowest leave-one-out mean %s, %.4g over %d folds",
+                order[chosen].c_str(), selection.metric.c_str(), best_score.mean,
+                best_score.folds);
+  selection.reason = reason;
+  std::unique_ptr<AlloyModel> model = std::move(models[chosen]);
   Report(settings.progress, "auto: " + selection.reason);
-  std::unique_ptr<AlloyModel> model = BuildModel(chosen, dataset, settings);
   FitSummary summary = model->fit_summary();
   summary.selection = selection;
   model->set_fit_summary(std::move(summary));

@@ -695,9 +695,18 @@ PhysicalFitResult FitPhysicalAtDegree(const Dataset& dataset, const PhysicalFitO
   const SampleData& lo_end = data.samples.front();
   const SampleData& hi_end = data.samples.back();
 
+  // A warm start of the same degree on the same ends gives the terms and the one start.
+  const PhysicalModel* warm = options.start;
+  if (warm != nullptr &&
+      (warm->layout().degree() != degree || warm->x_min() != lo_end.x ||
+       warm->x_max() != hi_end.x ||
+       (options.terms != "auto" && ParseInterbandTerms(options.terms) != warm->layout().interband()))) {
+    warm = nullptr;
+  }
   // Interband terms, and the end samples' fits with them.
   std::vector<std::string> candidates;
-  const std::string terms_option = options.terms;
+  const std::string terms_option = warm != nullptr ? InterbandTermsText(warm->layout().interband())
+                                                   : options.terms;
   if (terms_option == "auto") {
     if (data.infrared) {
       candidates.push_back("none");
@@ -713,6 +722,10 @@ PhysicalFitResult FitPhysicalAtDegree(const Dataset& dataset, const PhysicalFitO
   nlohmann::json auto_scores = nlohmann::json::array();
   for (const std::string& candidate : candidates) {
     const std::vector<TermKind> k = ParseInterbandTerms(candidate);
+    if (warm != nullptr) {
+      kinds = k;
+      break;
+    }
     const PhysicalLayout end_layout(k, 0);
     std::ostringstream msg;
     msg << "fitting the end samples (x = " << lo_end.x << ", " << hi_end.x << ") with terms "
@@ -746,16 +759,18 @@ PhysicalFitResult FitPhysicalAtDegree(const Dataset& dataset, const PhysicalFitO
            ", " + std::to_string(n) + " samples x " + std::to_string(data.grid_nm.size()) +
            " wavelengths");
   const int np = layout.num_parameters();
-  const std::vector<double>& r_lo = lo_fits.front().coeffs;
-  const std::vector<double>& r_hi = hi_fits.front().coeffs;
+  std::vector<std::vector<double>> starts;
+  if (warm != nullptr) starts.push_back(warm->coeffs());
+  const std::vector<double> none;
+  const std::vector<double>& r_lo = warm != nullptr ? none : lo_fits.front().coeffs;
+  const std::vector<double>& r_hi = warm != nullptr ? none : hi_fits.front().coeffs;
   auto line_at = [&](double x) {
     const double t = (x - lo_end.x) / (hi_end.x - lo_end.x);
     std::vector<double> r(np);
     for (int k = 0; k < np; ++k) r[k] = r_lo[k] + (r_hi[k] - r_lo[k]) * t;
     return r;
   };
-  std::vector<std::vector<double>> starts;
-  {
+  if (warm == nullptr) {
     std::vector<double> start(layout.num_coefficients(), 0.0);
     for (int k = 0; k < np; ++k) {
       start[k * nb] = 0.5 * (r_lo[k] + r_hi[k]);
@@ -765,7 +780,7 @@ PhysicalFitResult FitPhysicalAtDegree(const Dataset& dataset, const PhysicalFitO
   }
   // Quadratics through the ends and a middle sample's own fits (grid search as for the
   // ends): they carry the parameters' curvature that the straight line lacks.
-  if (n > 2 && degree >= 2) {
+  if (warm == nullptr && n > 2 && degree >= 2) {
     int mid = 1;
     for (int i = 1; i < n - 1; ++i) {
       if (std::abs(basis.U(data.samples[i].x)) < std::abs(basis.U(data.samples[mid].x))) mid = i;
@@ -861,7 +876,8 @@ PhysicalFitResult FitPhysicalAtDegree(const Dataset& dataset, const PhysicalFitO
   summary.rms_relative_eps = std::sqrt(2.0 * best.cost / std::max<size_t>(1, residuals));
   nlohmann::json& fit = summary.details;
   fit["terms"] = result.terms;
-  fit["terms_chosen_by"] = terms_option == "auto"
+  fit["terms_chosen_by"] = warm != nullptr ? "the start model (a warm start)"
+                           : terms_option == "auto"
                                ? (data.infrared ? "auto: infrared data, drude only"
                                                 : "auto: lowest BIC of the end samples' fits")
                                : "user";

@@ -10,7 +10,7 @@
 #include "alloycolor/color/material_color.h"
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/units.h"
-#include "parallel.h"
+#include "alloycolor/core/parallel.h"
 
 namespace alloycolor::render {
 namespace {
@@ -84,7 +84,7 @@ class Builder {
       : model_(model),
         colorimeters_(colorimeters),
         options_(options),
-        threads_(internal::ThreadCount(options.threads)) {}
+        threads_(ThreadCount(options.threads)) {}
 
   CompositionTable Build() {
     CheckOptions();
@@ -155,7 +155,7 @@ class Builder {
     for (int intervals = std::min(limit, std::max(2, options_.min_mu_intervals));; intervals *= 2) {
       const int mu_nodes = intervals + 1;
       std::vector<double> worst(xs.size() * colorimeters_.size(), 0.0);
-      internal::ParallelFor(static_cast<int>(worst.size()), 1, threads_, [&](int lo, int hi) {
+      ParallelFor(static_cast<int>(worst.size()), 1, threads_, [&](int lo, int hi) {
         for (int task = lo; task < hi; ++task) {
           const int c = task % static_cast<int>(colorimeters_.size());
           const DirectReflection direct = Direct(c, xs[task / colorimeters_.size()]);
@@ -186,7 +186,7 @@ class Builder {
     std::vector<std::vector<double>> rows(colorimeters_.size());
     for (auto& r : rows) r.resize(static_cast<std::size_t>(intervals + 1) * 3 * mu_nodes);
     const int nc = static_cast<int>(colorimeters_.size());
-    internal::ParallelFor((intervals + 1) * nc, 1, threads_, [&](int lo, int hi) {
+    ParallelFor((intervals + 1) * nc, 1, threads_, [&](int lo, int hi) {
       for (int task = lo; task < hi; ++task) {
         const int c = task % nc, i = task / nc;
         const std::vector<double> row =
@@ -204,7 +204,7 @@ class Builder {
     const CompositionSegment seg{x_lo, x_hi, intervals, 0};
     const int nc = static_cast<int>(colorimeters_.size());
     std::vector<double> worst(static_cast<std::size_t>(intervals) * nc, 0.0);
-    internal::ParallelFor(intervals * nc, 1, threads_, [&](int lo, int hi) {
+    ParallelFor(intervals * nc, 1, threads_, [&](int lo, int hi) {
       for (int task = lo; task < hi; ++task) {
         const int c = task % nc, i = task / nc;
         const double x = x_lo + (i + 0.5) * (x_hi - x_lo) / intervals;
@@ -277,7 +277,7 @@ class Builder {
       for (int r = 1; r < nr; ++r) ill.xyz[r].resize(nodes * row_size);
       if (sigma) ill.sigma_de00.resize(static_cast<std::size_t>(nodes) * na);
     }
-    internal::ParallelFor(nodes * nc, 1, threads_, [&](int lo, int hi) {
+    ParallelFor(nodes * nc, 1, threads_, [&](int lo, int hi) {
       for (int task = lo; task < hi; ++task) {
         const int c = task % nc, i = task / nc;
         IlluminantTable& ill = table->illuminants[c];
@@ -315,7 +315,7 @@ class Builder {
     const int nc = static_cast<int>(colorimeters_.size());
     const int mu_checks = 2 * (table->mu_nodes - 1) + 1;
     std::vector<ColourError> errors(xs.size() * nc);
-    internal::ParallelFor(static_cast<int>(errors.size()), 4, threads_, [&](int lo, int hi) {
+    ParallelFor(static_cast<int>(errors.size()), 4, threads_, [&](int lo, int hi) {
       for (int task = lo; task < hi; ++task) {
         const int c = task % nc;
         const double x = xs[task / nc];
@@ -346,7 +346,7 @@ class Builder {
     table->n.resize(nodes * nl);
     table->k.resize(nodes * nl);
     table->r_normal.resize(nodes * nl);
-    internal::ParallelFor(nodes, 4, threads_, [&](int begin, int end) {
+    ParallelFor(nodes, 4, threads_, [&](int begin, int end) {
       for (int i = begin; i < end; ++i) {
         const auto index = model_.Index(table->x_nodes[i], table->lambda_nm);
         const std::vector<double> r = color::ReflectanceSpectrum(index, 0.0);
@@ -400,7 +400,7 @@ std::vector<float> LatLongRadiance(Lighting lighting, double roughness_alpha, in
   std::unique_ptr<PrefilteredEnvironment> prefiltered;
   if (roughness_alpha > 0.0) {
     prefiltered = std::make_unique<PrefilteredEnvironment>(environment, roughness_alpha,
-                                                           internal::ThreadCount(threads));
+                                                           ThreadCount(threads));
   }
   std::vector<float> texels(static_cast<std::size_t>(width) * height);
   for (int j = 0; j < height; ++j) {

@@ -7,7 +7,7 @@
 
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/units.h"
-#include "parallel.h"
+#include "alloycolor/core/parallel.h"
 
 namespace alloycolor::render {
 namespace {
@@ -392,8 +392,8 @@ std::unique_ptr<internal::TilePlan> TraceTile(const RenderOptions& options,
   constexpr int kRows = internal::TilePlan::kRows;
   plan->pixels.resize(static_cast<std::size_t>(size) * size);
   plan->blocks.resize((size + kRows - 1) / kRows);
-  internal::ParallelFor(
-      size, kRows, internal::ThreadCount(options.threads), [&](int row_begin, int row_end) {
+  ParallelFor(
+      size, kRows, ThreadCount(options.threads), [&](int row_begin, int row_end) {
         internal::TileBlock& block = plan->blocks[row_begin / kRows];
         TileTracer tracer(options.shape, size);
         // Hits at the pixel corners of rows row_begin..row_end.
@@ -476,7 +476,7 @@ Renderer::Renderer(const color::Colorimeter& colorimeter, const RenderOptions& o
   CheckOptions(options_);
   if (options_.lighting == Lighting::kStudio && options_.roughness > 0.0) {
     prefiltered_ = std::make_unique<PrefilteredEnvironment>(
-        environment_, options_.roughness, internal::ThreadCount(options_.threads));
+        environment_, options_.roughness, ThreadCount(options_.threads));
   }
   plan_ = TraceTile(options_, environment_, prefiltered_.get());
 }
@@ -546,8 +546,8 @@ LinearImage Renderer::Shade(const ColourAt& rgb) const {
   const float backdrop_alpha = options_.background == Background::kTransparent ? 0.0f : 1.0f;
   LinearImage image(size, size);
   constexpr int kRows = internal::TilePlan::kRows;
-  internal::ParallelFor(
-      size, kRows, internal::ThreadCount(options_.threads), [&](int row_begin, int row_end) {
+  ParallelFor(
+      size, kRows, ThreadCount(options_.threads), [&](int row_begin, int row_end) {
         const internal::TileBlock& block = plan.blocks[row_begin / kRows];
         const internal::OutlinePixel* outline = block.outline.data();
         const std::size_t begin = static_cast<std::size_t>(row_begin) * size;

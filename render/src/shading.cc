@@ -8,7 +8,7 @@
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/units.h"
 #include "alloycolor/model/optics.h"
-#include "parallel.h"
+#include "alloycolor/core/parallel.h"
 
 namespace alloycolor::render {
 namespace {
@@ -283,7 +283,7 @@ PrefilteredEnvironment::PrefilteredEnvironment(const Environment& environment,
   height_ = width_ / 2;
   texels_.assign(static_cast<std::size_t>(width_) * height_, 0.0f);
   const auto& points = Hammersley<kPrefilterSamples>();
-  internal::ParallelFor(height_, 4, threads, [&](int row_begin, int row_end) {
+  ParallelFor(height_, 4, threads, [&](int row_begin, int row_end) {
     for (int j = row_begin; j < row_end; ++j) {
       const double theta = (j + 0.5) * kPi / height_;
       for (int i = 0; i < width_; ++i) {

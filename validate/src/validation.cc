@@ -5,11 +5,15 @@
 #include <complex>
 #include <cstdio>
 #include <limits>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <utility>
 
 #include "alloycolor/color/material_color.h"
 #include "alloycolor/core/composition.h"
 #include "alloycolor/core/error.h"
+#include "alloycolor/core/parallel.h"
 #include "alloycolor/core/grid.h"
 #include "alloycolor/core/spectrum.h"
 #include "alloycolor/core/units.h"
@@ -287,67 +291,66 @@ ValidationReport ComputeValidation(const Dataset& dataset,
     }
   }
 
-  const int total = static_cast<int>(options.methods.size() * splits.size());
-  int step = 0;
-  using Key = std::pair<std::string, size_t>;  // method, split
-  std::map<Key, std::unique_ptr<AlloyModel>> built;
-  std::map<Key, std::string> failed;
-  const auto build = [&](const std::string& method, size_t s) -> const AlloyModel* {
-    const Key key{method, s};
-    if (built.count(key)) return built[key].get();
-    if (failed.count(key)) return nullptr;
-    const SplitResult& split = report.splits[s];
-    ++step;
-    if (progress) {
-      progress("validate [" + std::to_string(step) + "/" + std::to_string(total) + "] " + method +
-               ": training on " + std::to_string(split.train_x.size()) +
-               " samples, holding out x = " + XList(split.holdout_x));
-    }
-    try {
-      built[key] = options.build(method, WithoutSamples(dataset, split.holdout_x));
-      return built[key].get();
-    } catch (const Error& e) {
-      failed[key] = e.what();
-      if (progress) progress("validate: " + method + " failed: " + e.what());
-      return nullptr;
-    }
-  };
-  // First, every method until it builds on some split: when none builds on any split
-  // there is nothing to report, and the first method's error is the answer. A method
-  // that fails everywhere beside others that work is reported as failed in each split
-  // (the physical fit refusing unphysical data, say).
-  bool any_method = false;
-  for (const std::string& method : options.methods) {
-    bool any = false;
-    for (size_t s = 0; s < report.splits.size() && !any; ++s) any = build(method, s) != nullptr;
-    any_method |= any;
+  // Every method on every split; a method's splits run in parallel (ParallelTasks), each
+  // task building its model and scoring its own held-out samples, so nothing is shared.
+  std::vector<std::vector<size_t>> holdouts_of(report.splits.size());
+  for (size_t h = 0; h < report.holdouts.size(); ++h) {
+    holdouts_of[report.holdouts[h].split].push_back(h);
   }
-  if (!any_method) throw Error(failed[{options.methods.front(), 0}]);
+  const size_t total = options.methods.size() * report.splits.size();
+  size_t done = 0;
+  std::mutex progress_mutex;
+  bool any_method = false;
+  std::string first_error;
   for (const std::string& method : options.methods) {
-    for (size_t s = 0; s < report.splits.size(); ++s) {
+    Report(progress, "validate: " + method + " on " + std::to_string(report.splits.size()) +
+                         (report.splits.size() == 1 ? " split" : " splits"));
+    std::vector<std::string> errors(report.splits.size());
+    ParallelTasks(report.splits.size(), [&](size_t s) {
       SplitResult& split = report.splits[s];
-      const AlloyModel* model = build(method, s);
-      if (model == nullptr) {
-        split.errors[method] = failed[{method, s}];
-        continue;
+      std::unique_ptr<AlloyModel> model;
+      try {
+        model = options.build(method, WithoutSamples(dataset, split.holdout_x));
+      } catch (const Error& e) {
+        errors[s] = e.what();
       }
-      split.warnings[method] = model->warnings();
-      if (model->fit_summary().selection.present()) {
-        split.choices[method] = model->fit_summary().selection.reason;
-      }
-      FillDrudeCurves(*model, method, dataset.system, &split.drude);
-      for (HoldoutResult& h : report.holdouts) {
-        if (h.split != static_cast<int>(s)) continue;
-        const Sample& sample = SampleAt(dataset, h.x_atomic);
-        try {
-          h.results[method] = Evaluate(*model, sample, colorimeter, options, &h);
-        } catch (const Error& e) {
-          h.results[method].error = e.what();
+      if (model) {
+        split.warnings[method] = model->warnings();
+        if (model->fit_summary().selection.present()) {
+          split.choices[method] = model->fit_summary().selection.reason;
+        }
+        FillDrudeCurves(*model, method, dataset.system, &split.drude);
+        for (size_t h : holdouts_of[s]) {
+          HoldoutResult& holdout = report.holdouts[h];
+          const Sample& sample = SampleAt(dataset, holdout.x_atomic);
+          try {
+            holdout.results[method] = Evaluate(*model, sample, colorimeter, options, &holdout);
+          } catch (const Error& e) {
+            holdout.results[method].error = e.what();
+          }
         }
       }
-      built.erase({method, s});
+      if (progress) {
+        const std::lock_guard<std::mutex> lock(progress_mutex);
+        progress("validate [" + std::to_string(++done) + "/" + std::to_string(total) + "] " +
+                 method + ", trained on " + std::to_string(split.train_x.size()) +
+                 " samples, held out x = " + XList(split.holdout_x) +
+                 (errors[s].empty() ? "" : ": failed: " + errors[s]));
+      }
+    });
+    // A method that fails everywhere beside others that work is reported as failed in
+    // each split (the physical fit refusing unphysical data, say); when no method builds
+    // on any split, the first method's first error is the answer.
+    for (size_t s = 0; s < report.splits.size(); ++s) {
+      if (errors[s].empty()) {
+        any_method = true;
+      } else {
+        report.splits[s].errors[method] = errors[s];
+        if (first_error.empty()) first_error = errors[s];
+      }
     }
   }
+  if (!any_method) throw Error(first_error);
   return report;
 }
 

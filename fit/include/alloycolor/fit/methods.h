@@ -42,14 +42,15 @@ struct MethodBuilder {
   std::unique_ptr<AlloyModel> (*build)(const Dataset& dataset, const FitSettings& settings);
 };
 
-// "auto", the default of `alloycolor fit`: every other method is scored by leave-one-
-// composition-out over the interior samples (each held out in turn, the method built on
-// the rest; mean CIEDE2000 at normal incidence, or reflectance RMS for data without colour);
-// the simplest method whose mean lies within 10 % of the lowest wins (simplest first:
-// eps-pchip, eps-linear, eps-spline, paper, smooth, physical), since leave-one-out with few
-// samples flatters the flexible methods. With fewer than three compositions nothing can be
-// held out and eps-pchip is chosen (with two samples every interpolation is the line). The model of the chosen method, built on all
-// samples, carries the table (FitSummary::selection).
+// "auto", the default of `alloycolor fit`: every other method is built on all samples with
+// its leave-one-composition-out folds (those of its prediction error, see BuildModel: each
+// interior composition held out in turn, 20 at most), and scored on the folds' held-out
+// samples as `validate` scores them (mean CIEDE2000 at normal incidence, or reflectance RMS
+// for data without colour); the simplest method whose mean lies within 10 % of the lowest
+// wins (simplest first: eps-pchip, eps-linear, eps-spline, paper, smooth, physical), since
+// leave-one-out with few samples flatters the flexible methods. With fewer than three
+// compositions nothing can be held out and eps-pchip is chosen (with two samples every
+// interpolation is the line). The chosen model carries the table (FitSummary::selection).
 inline constexpr const char* kAutoMethod = "auto";
 std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings& settings);
 

@@ -57,6 +57,10 @@ struct PhysicalFitOptions {
   std::string terms = "auto";
   int max_iterations = 500;
   bool covariance = true;
+  // Warm start: a model fitted to data with the same end compositions (the parent of a
+  // leave-one-out fold). With the same degree, its terms and coefficients are the one
+  // start (no end-sample fits, no race); otherwise it is ignored.
+  const PhysicalModel* start = nullptr;
   std::function<void(const std::string& message)> progress;  // may be empty
 };
 

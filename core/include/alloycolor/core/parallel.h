@@ -1,15 +1,19 @@
-// Splitting work over threads (internal to the render library).
-#ifndef ALLOYCOLOR_RENDER_SRC_PARALLEL_H_
-#define ALLOYCOLOR_RENDER_SRC_PARALLEL_H_
+// Splitting work over threads: the renderer's rows and tables over a number of threads it
+// is given (ParallelFor), and the folds of fits and validations over the machine's cores
+// (ParallelTasks), sharing them when such work nests.
+#ifndef ALLOYCOLOR_CORE_PARALLEL_H_
+#define ALLOYCOLOR_CORE_PARALLEL_H_
 
 #include <algorithm>
 #include <atomic>
+#include <cstddef>
 #include <exception>
+#include <functional>
 #include <mutex>
 #include <thread>
 #include <vector>
 
-namespace alloycolor::render::internal {
+namespace alloycolor {
 
 // How many threads to use for a request of `threads` (0: the hardware's count).
 inline int ThreadCount(int threads) {
@@ -51,6 +55,14 @@ void ParallelFor(int count, int block, int threads, const Body& body) {
   if (error) std::rethrow_exception(error);
 }
 
-}  // namespace alloycolor::render::internal
+// Calls task(i) for every i in [0, count), on the calling thread and the machine's other
+// cores not already running such tasks: at most hardware_concurrency() threads in all
+// across nested calls (a call made inside a task gets the threads still free, often none,
+// and then runs its tasks in turn on its own thread). Every task runs; then the exception
+// of the lowest i, if any, is rethrown, so the outcome does not depend on the timing. The
+// tasks must not share mutable state (each writes its own result).
+void ParallelTasks(std::size_t count, const std::function<void(std::size_t)>& task);
 
-#endif  // ALLOYCOLOR_RENDER_SRC_PARALLEL_H_
+}  // namespace alloycolor
+
+#endif  // ALLOYCOLOR_CORE_PARALLEL_H_

@@ -1,5 +1,6 @@
 // Colours per second along a sweep of compositions of Au-Ag (D65, 2-degree observer, the
-// 5 nm grid, normal incidence unless named), for each model: paper, eps-linear, smooth.
+// 5 nm grid, normal incidence unless named), for each method: paper, eps-linear, smooth,
+// eps-pchip, eps-spline, physical.
 // One item is one composition taken to XYZ, CIELAB and 8-bit sRGB.
 //
 //  - Naive: the straightforward implementation of the chain, written here as a plain
@@ -21,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "alloycolor/fit/physical_fit.h"
 #include "alloycolor/fit/smooth_fit.h"
 #include "alloycolor/core/dataset.h"
 #include "alloycolor/model/sample_models.h"
@@ -39,16 +41,19 @@ constexpr int kSweepSteps = 1001;  // compositions 0, 0.001, ..., 1, cycled
 struct Fixture {
   color::Colorimeter colorimeter = color::Colorimeter::Load(ALLOYCOLOR_DATA_DIR, "D65", 2);
   Dataset dataset = LoadDataset(std::string(ALLOYCOLOR_DATA_DIR) + "/Au-Ag");
-  std::unique_ptr<AlloyModel> paper, eps_linear, smooth;
+  // 0 paper, 1 eps-linear, 2 smooth, 3 eps-pchip, 4 eps-spline, 5 physical.
+  std::vector<std::unique_ptr<AlloyModel>> models;
   Fixture() {
-    paper = std::make_unique<SampleModel>(SampleModel::Kind::kPaper, dataset);
-    eps_linear = std::make_unique<SampleModel>(SampleModel::Kind::kEpsLinear, dataset);
+    models.push_back(std::make_unique<SampleModel>(SampleModel::Kind::kPaper, dataset));
+    models.push_back(std::make_unique<SampleModel>(SampleModel::Kind::kEpsLinear, dataset));
     fit::SmoothFitOptions options;  // the default fit: smoothing by cross-validation
-    smooth = std::move(fit::FitSmooth(dataset, options).model);
+    models.push_back(std::move(fit::FitSmooth(dataset, options).model));
+    models.push_back(std::make_unique<SampleModel>(SampleModel::Kind::kEpsPchip, dataset));
+    models.push_back(std::make_unique<SampleModel>(SampleModel::Kind::kEpsSpline, dataset));
+    fit::PhysicalFitOptions physical;
+    models.push_back(std::move(fit::FitPhysical(dataset, physical).model));
   }
-  const AlloyModel& Model(int which) const {
-    return which == 0 ? *paper : which == 1 ? *eps_linear : *smooth;
-  }
+  const AlloyModel& Model(int which) const { return *models[which]; }
 };
 
 const Fixture& Shared() {
@@ -177,17 +182,19 @@ void BM_SweepTableBuild(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(sweep.BuildTable(0.0, 1.0));
 }
 
+constexpr int kModels = 6;
 void ModelNames(benchmark::internal::Benchmark* b) {
   b->ArgNames({"model"});
-  for (int m = 0; m < 3; ++m) b->Args({m});
+  for (int m = 0; m < kModels; ++m) b->Args({m});
 }
 void ModelAngleNames(benchmark::internal::Benchmark* b) {
   b->ArgNames({"model", "angle"});
-  for (int m = 0; m < 3; ++m) b->Args({m, 0});
+  for (int m = 0; m < kModels; ++m) b->Args({m, 0});
+  b->Args({0, 60});
   b->Args({2, 60});
 }
 
-// model: 0 paper, 1 eps-linear, 2 smooth.
+// model: 0 paper, 1 eps-linear, 2 smooth, 3 eps-pchip, 4 eps-spline, 5 physical.
 BENCHMARK(BM_Naive)->Apply(ModelNames);
 BENCHMARK(BM_Library)->Apply(ModelNames);
 BENCHMARK(BM_SweepExact)->Apply(ModelAngleNames);

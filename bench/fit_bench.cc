@@ -6,13 +6,18 @@
 //    on the 5 nm grid.
 // Both with the smoothing fixed (1e-3), so the figure is the Ceres solve itself (its
 // iteration count is reported: it varies with the data, and so does the time);
-// BM_FitDefault is the program's default fit (smoothing by leave-one-composition-out
-// cross-validation over 8 candidates) on all samples and the 5 nm grid.
+// BM_FitDefault is the smooth fit as `fit --method smooth` runs it (smoothing by leave-one-
+// composition-out cross-validation over 8 candidates) on all samples and the 5 nm grid;
+// BM_BuildModel is the whole of what `fit` does for a method before writing the file:
+// the fit and its prediction error from 9 leave-one-out folds (fit::BuildModel, the folds
+// on the machine's cores: wall-clock time), for smooth, physical and auto.
 #include <benchmark/benchmark.h>
 
 #include <string>
 #include <vector>
 
+#include "alloycolor/color/colorimetry.h"
+#include "alloycolor/fit/methods.h"
 #include "alloycolor/fit/smooth_fit.h"
 #include "alloycolor/core/dataset.h"
 #include "alloycolor/core/spectrum.h"
@@ -72,6 +77,18 @@ void BM_FitDefault(benchmark::State& state) {
   }
 }
 
+// range(0): 0 smooth, 1 physical, 2 auto.
+void BM_BuildModel(benchmark::State& state) {
+  static const color::Colorimeter d65 = color::Colorimeter::Load(ALLOYCOLOR_DATA_DIR, "D65", 2);
+  const char* method = state.range(0) == 0 ? "smooth" : state.range(0) == 1 ? "physical" : "auto";
+  fit::FitSettings settings;
+  settings.colorimeter = &d65;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(fit::BuildModel(method, AuAg(), settings));
+  }
+  state.SetLabel(method);
+}
+
 BENCHMARK(BM_FitWavelengths)
     ->ArgName("x")
     ->Arg(1)
@@ -91,6 +108,15 @@ BENCHMARK(BM_FitSamples)
 BENCHMARK(BM_FitDefault)
     ->Unit(benchmark::kMillisecond)
     ->Repetitions(5)
+    ->ReportAggregatesOnly();
+BENCHMARK(BM_BuildModel)
+    ->ArgName("method")
+    ->Arg(0)
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Repetitions(3)
     ->ReportAggregatesOnly();
 
 }  // namespace

@@ -134,6 +134,7 @@ std::vector<Fold> FitFolds(const std::string& method, const Dataset& dataset,
   const std::vector<double> xs = ErrorFolds(dataset);
   FitSettings inner = settings;
   inner.calibrate = false;
+  inner.covariance = false;  // a fold's model only predicts its held-out samples
   inner.progress = {};
   inner.start = method == "physical" ? &model : nullptr;
   std::vector<Fold> folds(xs.size());

@@ -268,7 +268,7 @@ void RegisterValidate(CLI::App& app) {
                 "Leave one out: hold out each interior sample in turn (the default)");
   cmd->add_option("--methods", o->methods,
                   "Methods to compare, comma-separated, or all (every method and auto, which "
-                  "runs its own leave-one-out inside every fold: slow with physical)")
+                  "runs its own leave-one-out inside every fold, on the training samples only)")
       ->capture_default_str();
   cmd->add_option("--angles", o->angles, "Angles of incidence for colour, degrees")
       ->capture_default_str();

@@ -58,7 +58,8 @@ std::unique_ptr<AlloyModel> BuildPhysical(const Dataset& dataset, const FitSetti
   PhysicalFitOptions options;
   if (settings.degree >= 0) options.degree = settings.degree;
   options.terms = settings.terms;
-  options.covariance = settings.covariance;
+  options.covariance = settings.covariance && !settings.fold;
+  options.check_physics = !settings.fold;
   options.progress = settings.progress;
   options.start = dynamic_cast<const PhysicalModel*>(settings.start);
   if (settings.lambda_from_nm != 0 || settings.lambda_to_nm != 0) {
@@ -134,7 +135,7 @@ std::vector<Fold> FitFolds(const std::string& method, const Dataset& dataset,
   const std::vector<double> xs = ErrorFolds(dataset);
   FitSettings inner = settings;
   inner.calibrate = false;
-  inner.covariance = false;  // a fold's model only predicts its held-out samples
+  inner.fold = true;
   inner.progress = {};
   inner.start = method == "physical" ? &model : nullptr;
   std::vector<Fold> folds(xs.size());

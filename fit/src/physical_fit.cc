@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <mutex>
 #include <sstream>
 
 #include "alloycolor/fit/physical_costs.h"
@@ -567,6 +568,36 @@ std::vector<SolveResult> FitSingle(const PhysicalLayout& layout, const SampleDat
   return distinct;
 }
 
+// FitSingle of an end sample, remembered for the life of the process: every leave-one-out
+// fold of a data set (the prediction error's, `validate`'s, auto's) keeps the same end
+// samples and fits them alike, and a fit is deterministic, so the remembered result is the
+// one a new fit would give. Keyed by everything FitSingle reads of its inputs.
+std::vector<SolveResult> FitEndSample(const PhysicalLayout& layout, const SampleData& s,
+                                      const FitData& data) {
+  std::string key = InterbandTermsText(layout.interband());
+  const auto add = [&key](const void* bytes, size_t size) {
+    key.append(static_cast<const char*>(bytes), size);
+  };
+  const int degree = layout.degree();
+  add(&degree, sizeof degree);
+  add(&data.omega_min, sizeof data.omega_min);
+  add(&data.omega_max, sizeof data.omega_max);
+  add(s.omega_ev.data(), s.omega_ev.size() * sizeof(double));
+  add(s.eps.data(), s.eps.size() * sizeof(std::complex<double>));
+  static std::mutex mutex;
+  static std::map<std::string, std::vector<SolveResult>> remembered;
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    const auto it = remembered.find(key);
+    if (it != remembered.end()) return it->second;
+  }
+  std::vector<SolveResult> fits = FitSingle(layout, s, data);
+  const std::lock_guard<std::mutex> lock(mutex);
+  if (remembered.size() >= 64) remembered.clear();  // a bound on what is kept
+  remembered.emplace(std::move(key), fits);
+  return fits;
+}
+
 // Bayesian information criterion of a fit with n residuals and p parameters.
 double Bic(double cost, size_t n, int p) {
   return n * std::log(std::max(2.0 * cost, 1e-300) / n) + p * std::log(static_cast<double>(n));
@@ -651,7 +682,7 @@ PhysicalFitResult FitPhysical(const Dataset& dataset, const PhysicalFitOptions& 
   std::vector<std::string> notes;
   for (;;) {
     PhysicalFitResult result = FitPhysicalAtDegree(dataset, o);
-    const std::string problem = Unphysical(*result.model, dataset);
+    const std::string problem = o.check_physics ? Unphysical(*result.model, dataset) : "";
     const bool converged = result.model->fit_summary().converged;
     const int degree = result.model->fit_summary().degree;
     if ((problem.empty() && converged) || degree <= 1) {
@@ -731,8 +762,8 @@ PhysicalFitResult FitPhysicalAtDegree(const Dataset& dataset, const PhysicalFitO
     msg << "fitting the end samples (x = " << lo_end.x << ", " << hi_end.x << ") with terms "
         << InterbandTermsText(k);
     progress(msg.str());
-    auto lo = FitSingle(end_layout, lo_end, data);
-    auto hi = FitSingle(end_layout, hi_end, data);
+    auto lo = FitEndSample(end_layout, lo_end, data);
+    auto hi = FitEndSample(end_layout, hi_end, data);
     const int p = end_layout.num_parameters();
     const double bic = Bic(lo.front().cost, 2 * lo_end.eps.size(), p) +
                        Bic(hi.front().cost, 2 * hi_end.eps.size(), p);

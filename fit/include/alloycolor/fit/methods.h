@@ -30,6 +30,10 @@ struct FitSettings {
   // Estimate the model's prediction error (PredictionError) by leave-one-composition-out:
   // one more fit per interior composition (at most 20).
   bool calibrate = true;
+  // The model of a leave-one-out fold (set by the folds themselves): it only predicts its
+  // held-out samples, so the physical fit skips its covariance and its check for leaving
+  // physics.
+  bool fold = false;
   const AlloyModel* start = nullptr;  // refit: start from this model (same method)
   ProgressCallback progress;          // may be empty
   // auto (required there): the colorimeter its leave-one-out scores colour with, at normal

@@ -61,6 +61,9 @@ struct PhysicalFitOptions {
   // leave-one-out fold). With the same degree, its terms and coefficients are the one
   // start (no end-sample fits, no race); otherwise it is ignored.
   const PhysicalModel* start = nullptr;
+  // false: no check for leaving physics (below) — for the model of a leave-one-out fold,
+  // which only predicts its held-out samples and is never written or shown.
+  bool check_physics = true;
   std::function<void(const std::string& message)> progress;  // may be empty
 };
 

@@ -286,6 +286,35 @@ TEST_F(AuAg, StaysPassiveAndBoundedEverywhereInItsRange) {
   }
 }
 
+// A leave-one-out fold started from the model fitted to all samples (as the prediction
+// error's folds are) reaches the fit a cold start reaches on the fold's data: the same
+// terms, and predictions at the held-out composition equal to 1e-3 relative (both fits
+// reproduce the data to about 1e-5), in fewer iterations. A start of another degree is
+// ignored (a cold fit).
+TEST_F(AuAg, AWarmFoldReachesTheColdFit) {
+  const Dataset fold = WithoutSamples(*dataset_, {0.5});
+  fit::PhysicalFitOptions cold_options;
+  const auto cold = fit::FitPhysical(fold, cold_options);
+  fit::PhysicalFitOptions warm_options;
+  warm_options.start = model_;
+  const auto warm = fit::FitPhysical(fold, warm_options);
+  EXPECT_EQ(warm.terms, cold.terms);
+  EXPECT_NE(warm.model->fit_summary().details.value("terms_chosen_by", "").find("warm start"),
+            std::string::npos);
+  EXPECT_LT(warm.model->fit_summary().iterations, cold.model->fit_summary().iterations);
+  const std::vector<double> grid = UniformGrid(300, 1000, 5);
+  const auto a = warm.model->Permittivity(0.5, grid), b = cold.model->Permittivity(0.5, grid);
+  for (size_t j = 0; j < grid.size(); ++j) {
+    EXPECT_LE(std::abs(a[j] - b[j]), 1e-3 * std::abs(b[j])) << grid[j] << " nm";
+  }
+  fit::PhysicalFitOptions other_degree;
+  other_degree.start = model_;
+  other_degree.degree = 1;
+  const auto ignored = fit::FitPhysical(fold, other_degree);
+  EXPECT_EQ(ignored.model->fit_summary().details.value("terms_chosen_by", "").find("warm start"),
+            std::string::npos);
+}
+
 // Querry's zinc (eps1 > 1 across the visible) drives every degree's fit to eps2 < 0
 // between the samples: refused, naming the data set and where.
 TEST(PhysicalFit, AFitThatIsNotPassiveIsRefusedNamingWhere) {

@@ -14,6 +14,7 @@
 #include "alloycolor/core/dataset.h"
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/io.h"
+#include "alloycolor/model/interpolation.h"
 #include "alloycolor/model/sample_models.h"
 #include "alloycolor/core/units.h"
 #include "alloycolor/color/material_color.h"
@@ -305,6 +306,45 @@ TEST(SmoothFit, AuAgThreeSamplesPredictTheRestWithin05) {
     worst = std::max(worst, color::DeltaE00(truth, predicted));
   }
   EXPECT_LE(worst, 0.5);
+}
+
+}  // namespace
+}  // namespace alloycolor
+
+namespace alloycolor {
+namespace {
+
+// A narrow peak of eps2 between widely spaced samples: the natural spline through them
+// undershoots below 0 on either side (checked on the interpolant itself); eps-spline holds
+// eps2 at 0 there, in its scalar and its bound form, and stays the spline elsewhere.
+TEST(EpsSpline, HoldsEps2AtZeroWhereTheSplineUndershoots) {
+  const std::vector<double> xs = {0.0, 0.4, 0.45, 0.55, 0.6, 1.0};
+  const auto truth = [](double x, double) {
+    return std::complex<double>(-20.0 - x, x > 0.42 && x < 0.58 ? 6.0 : 0.1);  // no two alike
+  };
+  const Dataset data = LoadDataset(WriteSyntheticDataset(xs, truth));
+  const Interpolant spline(Interpolation::kNaturalSpline, xs, {0.1, 0.1, 6, 6, 0.1, 0.1});
+  double lowest = 1e300;
+  for (int i = 0; i <= 1000; ++i) lowest = std::min(lowest, spline(i / 1000.0));
+  ASSERT_LT(lowest, -0.1);  // the raw spline does undershoot
+  const SampleModel model(SampleModel::Kind::kEpsSpline, data);
+  const std::vector<double> grid = {400, 550, 700};
+  const auto bound = model.Bind(grid);
+  int held = 0;
+  for (int i = 0; i <= 1000; ++i) {
+    const double x = i / 1000.0;
+    const auto eps = model.Permittivity(x, grid);
+    const auto fast = bound->Permittivity(x);
+    const double raw = spline(x);
+    for (size_t j = 0; j < grid.size(); ++j) {
+      EXPECT_GE(eps[j].imag(), 0.0) << x;
+      EXPECT_NEAR(eps[j].imag(), std::max(raw, 0.0), 1e-6) << x;  // the files' digits
+      EXPECT_NEAR(fast[j].im, eps[j].imag(), 1e-12) << x;
+      EXPECT_NEAR(fast[j].re, eps[j].real(), 1e-12 * std::abs(eps[j].real())) << x;
+    }
+    held += raw < 0;
+  }
+  EXPECT_GT(held, 10);
 }
 
 }  // namespace

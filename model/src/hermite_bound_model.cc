@@ -23,14 +23,21 @@ void Lerp(size_t m, const double* __restrict lo, const double* __restrict hi, do
   for (size_t i = 0; i < m; ++i) out[i] = lo[i] + (hi[i] - lo[i]) * t;
 }
 
+// v = max(v, 0).
+ALLOYCOLOR_SIMD_CLONES
+void AtLeastZero(size_t m, double* __restrict v) {
+  for (size_t i = 0; i < m; ++i) v[i] = v[i] < 0.0 ? 0.0 : v[i];
+}
+
 }  // namespace
 
 HermiteBoundModel::HermiteBoundModel(std::vector<double> lambda_nm, std::vector<double> knots_x,
-                                     std::vector<Knot> knots, bool linear)
+                                     std::vector<Knot> knots, bool linear, bool passive)
     : BoundModel(std::move(lambda_nm)),
       knots_x_(std::move(knots_x)),
       knots_(std::move(knots)),
-      linear_(linear) {}
+      linear_(linear),
+      passive_(passive) {}
 
 HermiteBoundModel::Knot HermiteBoundModel::KnotOf(std::vector<double> eps1,
                                                   std::vector<double> eps2,
@@ -72,6 +79,7 @@ void HermiteBoundModel::Permittivity(double x, double* eps1, double* eps2) const
     const double* s2 = below ? k.slope2_above.data() : k.slope2_below.data();
     WeightedSum(m, 1.0, k.eps1.data(), dx, s1, 0.0, k.eps1.data(), 0.0, s1, eps1);
     WeightedSum(m, 1.0, k.eps2.data(), dx, s2, 0.0, k.eps2.data(), 0.0, s2, eps2);
+    if (passive_) AtLeastZero(m, eps2);
     return;
   }
   const size_t hi = std::upper_bound(knots_x_.begin(), knots_x_.end(), x) - knots_x_.begin();
@@ -85,6 +93,7 @@ void HermiteBoundModel::Permittivity(double x, double* eps1, double* eps2) const
               b.slope1_below.data(), eps1);
   WeightedSum(m, w0, a.eps2.data(), w1, a.slope2_above.data(), w2, b.eps2.data(), w3,
               b.slope2_below.data(), eps2);
+  if (passive_) AtLeastZero(m, eps2);
 }
 
 }  // namespace alloycolor

@@ -26,9 +26,10 @@ class HermiteBoundModel : public BoundModel {
     std::vector<double> slope1_above, slope2_above;  // on the interval starting there
   };
   // `linear`: every slope the secant of its interval (eps-linear), evaluated as
-  // lo + (hi - lo) t exactly as the scalar path.
+  // lo + (hi - lo) t exactly as the scalar path. `passive`: eps2 held at 0 from below (a
+  // natural spline can undershoot between samples; the other schemes cannot).
   HermiteBoundModel(std::vector<double> lambda_nm, std::vector<double> knots_x,
-                    std::vector<Knot> knots, bool linear);
+                    std::vector<Knot> knots, bool linear, bool passive = false);
 
   void Permittivity(double x_atomic, double* eps1, double* eps2) const override;
 
@@ -39,7 +40,7 @@ class HermiteBoundModel : public BoundModel {
  private:
   std::vector<double> knots_x_;
   std::vector<Knot> knots_;
-  bool linear_;
+  bool linear_, passive_;
 };
 
 }  // namespace alloycolor

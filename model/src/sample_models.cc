@@ -223,7 +223,8 @@ std::unique_ptr<BoundModel> SampleModel::Bind(const std::vector<double>& lambda_
       }
     }
     return std::make_unique<HermiteBoundModel>(lambda_nm, std::move(node_x), std::move(knots),
-                                               kind_ == Kind::kEpsLinear);
+                                               kind_ == Kind::kEpsLinear,
+                                               kind_ == Kind::kEpsSpline);
   }
   std::vector<BoundPaperModel::Invertible> invertible(m);
   for (size_t i = 0; i < m; ++i) {
@@ -405,7 +406,10 @@ std::complex<double> SampleModel::EpsCubicAt(double x, double lambda_nm) const {
   }
   const Interpolation scheme =
       kind_ == Kind::kEpsPchip ? Interpolation::kPchip : Interpolation::kNaturalSpline;
-  return {Interpolant(scheme, xs, e1)(x), Interpolant(scheme, std::move(xs), e2)(x)};
+  const double eps2 = Interpolant(scheme, xs, e2)(x);
+  // A natural spline can undershoot between samples: eps2 is held at 0 (passive).
+  return {Interpolant(scheme, std::move(xs), e1)(x),
+          kind_ == Kind::kEpsSpline && eps2 < 0.0 ? 0.0 : eps2};
 }
 
 bool SampleModel::PaperTauMass(double x, double lambda_nm, TauMass* out) const {
@@ -477,7 +481,7 @@ nlohmann::json SampleModel::ParametersJson() const {
                               : kind_ == Kind::kEpsLinear ? "eps linear in x"
                               : kind_ == Kind::kEpsPchip
                                   ? "eps1, eps2 monotone cubic (PCHIP) in x"
-                                  : "eps1, eps2 natural cubic spline in x";
+                                  : "eps1, eps2 natural cubic spline in x, eps2 held at 0 from below";
   return {{"interpolation", interpolation},
           {"samples", samples}};
 }

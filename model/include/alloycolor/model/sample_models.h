@@ -11,6 +11,8 @@
 //    obvious baseline the fitted models must beat.
 //  - "eps-pchip": eps1 and eps2 each interpolated in x by a monotone cubic (PCHIP), and
 //    "eps-spline": by a natural cubic spline (interpolation.h): the strongest simple rivals.
+//    PCHIP stays between neighbouring samples; a natural spline can undershoot, and its
+//    eps2 is held at 0 where it would (a negative eps2 is an amplifying medium).
 //
 // Both interpolate each sample's n, k linearly in wavelength. Outside the samples' x range
 // they extrapolate linearly from the two nearest samples (the caller decides whether

@@ -46,10 +46,14 @@ void NormalReflectanceSums(std::size_t m, const double* __restrict eps1,
 
 // FresnelReflectance(N, c).Average() with N^2 = eps: S = sqrt(eps - sin^2) (the principal
 // root, as Sqrt in complex.h), Rs = |c - S|^2 / |c + S|^2, Rp = |eps c - S|^2 / |eps c + S|^2.
-// Sqrt's t is one part of S and the other is |Im| / (2 t) (signed), so with every term
-// multiplied by T = 2 t (T S = S', each part t^2 or Im) and Rs + Rp over one denominator
-// there is one division. The two 0/0 limits as FresnelReflectance: Rs = 0 where its
-// denominator is 0, Rp = Rs where its is; S = 0 (then T = 1) where eps = sin^2.
+// Sqrt's t is one part of S and the other is |Im| / (2 t) (signed), so every term is
+// multiplied by T = 2 t: S' = T S has the parts 2 t^2 and Im, |S'|^2 = 4 t^2 |eps - sin^2|,
+// and with P = c T eps,
+//   |cT -+ S'|^2 = A -+ B,  A = (cT)^2 + |S'|^2,  B = 2 cT Re S',
+//   |P -+ S'|^2  = C -+ D,  C = |P|^2 + |S'|^2,   D = 2 Re(P conj S'),
+//   (Rs + Rp) / 2 = (AC - BD) / ((A + B)(C + D)):  one division.
+// The two 0/0 limits as FresnelReflectance: Rs = 0 where its denominator is 0, Rp = Rs
+// where its is; S = 0 (then T = 1) where eps = sin^2.
 ALLOYCOLOR_SIMD_CLONES
 void ObliqueReflectanceSums(std::size_t m, const double* __restrict eps1,
                             const double* __restrict eps2, double c,
@@ -59,22 +63,21 @@ void ObliqueReflectanceSums(std::size_t m, const double* __restrict eps1,
   double sx = 0, sy = 0, sz = 0;
   ALLOYCOLOR_LANE_SUMS
   for (std::size_t i = 0; i < m; ++i) {
-    const double zr = eps1[i] - sin2, zi = eps2[i];
-    const double a = std::sqrt(zr * zr + zi * zi);
+    const double e1 = eps1[i], e2 = eps2[i];
+    const double zr = e1 - sin2;
+    const double a = std::sqrt(zr * zr + e2 * e2);
     const double t = std::sqrt((a + std::abs(zr)) * 0.5);
     const bool zero = a == 0.0;
     const double tt = 2.0 * t * t;
-    const double sre = zero ? 0.0 : zr >= 0.0 ? tt : std::abs(zi);
-    const double sim = zero ? 0.0 : zr >= 0.0 ? zi : (zi < 0.0 ? -tt : tt);
-    const double T = zero ? 1.0 : 2.0 * t;
-    const double ct = c * T, pre = ct * eps1[i], pim = ct * eps2[i];
-    const double ns = (ct - sre) * (ct - sre) + sim * sim;
-    const double ds = (ct + sre) * (ct + sre) + sim * sim;
-    const double np = (pre - sre) * (pre - sre) + (pim - sim) * (pim - sim);
-    const double dp = (pre + sre) * (pre + sre) + (pim + sim) * (pim + sim);
-    // (Rs + Rp) / 2 = (ns dp + np ds) / (2 ds dp); Rs = 0 at ds = 0; Rp = Rs at dp = 0.
-    const double num = ds == 0.0 ? np : dp == 0.0 ? ns : ns * dp + np * ds;
-    const double den = ds == 0.0 ? 2.0 * dp : dp == 0.0 ? ds : 2.0 * ds * dp;
+    const double sre = zero ? 0.0 : zr >= 0.0 ? tt : std::abs(e2);
+    const double sim = zero ? 0.0 : zr >= 0.0 ? e2 : (e2 < 0.0 ? -tt : tt);
+    const double ct = zero ? c : 2.0 * c * t;
+    const double s2 = 2.0 * tt * a;  // |S'|^2
+    const double A = ct * ct + s2, B = 2.0 * ct * sre;
+    const double C = ct * ct * (e1 * e1 + e2 * e2) + s2, D = 2.0 * ct * (e1 * sre + e2 * sim);
+    const double ds = A + B, dp = C + D;
+    const double num = ds == 0.0 ? C - D : dp == 0.0 ? A - B : A * C - B * D;
+    const double den = ds == 0.0 ? 2.0 * dp : dp == 0.0 ? ds : ds * dp;
     const double q = num / den;
     const double r = den == 0.0 ? 0.0 : q;
     sx += wx[i] * r;

@@ -14,6 +14,7 @@
 #include "alloycolor/core/grid.h"
 #include "alloycolor/core/output.h"
 #include "alloycolor/core/text.h"
+#include "alloycolor/core/parallel.h"
 #include "common.h"
 
 namespace alloycolor::app {
@@ -35,6 +36,7 @@ struct FitOptions {
   double lambda_from = 0, lambda_to = 0, lambda_step = 0;
   bool no_covariance = false;
   bool quiet = false;
+  int threads = 0;
 };
 
 // The largest change in n and k between two models over their common range, at
@@ -89,6 +91,7 @@ void ReportChanges(const AlloyModel& old_model, const AlloyModel& model) {
 }
 
 void Run(const FitOptions& o) {
+  SetParallelTaskThreads(o.threads);
   if (o.out.empty()) throw Error("--out: give the model file to write");
   namespace fs = std::filesystem;
   std::error_code ec;
@@ -237,6 +240,10 @@ void RegisterFit(CLI::App& app) {
                   "infrared); at least 0.01 nm, at most 20,000 grid nodes")
       ->check(NumberIn(0.01, 1e5));
   cmd->add_flag("--no-covariance", o->no_covariance, "smooth, physical: skip the covariance");
+  cmd->add_option("--threads", o->threads,
+                  "Threads for the leave-one-out folds of the fit (0: all the hardware's)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1024));
   cmd->add_flag("--quiet", o->quiet, "No progress or warnings on stderr");
   cmd->callback([o]() { Run(*o); });
 }

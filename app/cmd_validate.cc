@@ -10,6 +10,7 @@
 
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/io.h"
+#include "alloycolor/core/parallel.h"
 #include "common.h"
 #include "alloycolor/fit/methods.h"
 #include "alloycolor/model/registry.h"
@@ -28,6 +29,7 @@ struct ValidateOptions {
   int observer = 2;
   std::string out;
   bool quiet = false;
+  int threads = 0;
 };
 
 std::vector<std::string> SplitList(const std::string& text) {
@@ -200,6 +202,7 @@ void PrintSummary(const nlohmann::json& report) {
 }
 
 void Run(const ValidateOptions& o) {
+  SetParallelTaskThreads(o.threads);
   if (o.out.empty()) throw Error("--out: give the report folder");
   const Dataset dataset = LoadDatasetArg(o.data_dir);
   if (!o.quiet) {
@@ -274,6 +277,10 @@ void RegisterValidate(CLI::App& app) {
       ->capture_default_str();
   AddColorimetryOptions(cmd, &o->illuminant, &o->observer);
   cmd->add_option("--out", o->out, "Report folder (created if missing)")->required();
+  cmd->add_option("--threads", o->threads,
+                  "Threads for the splits and their fits (0: all the hardware's)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1024));
   cmd->add_flag("--quiet", o->quiet, "No progress or warnings on stderr");
   cmd->callback([o]() { Run(*o); });
 }

@@ -407,5 +407,34 @@ TEST(Validate, AMethodFailingEverywhereIsReportedBesideTheOthers) {
       << r.out;
 }
 
+// The folds and splits run on several threads or on one: the report is the same to the
+// byte (each task writes its own result; nothing depends on which finishes first), and
+// so is a fitted model file with its prediction error.
+TEST(Validate, TheSameOnOneThreadAsOnSeveral) {
+  const std::string dir = MakeTempDir();
+  std::string reports[2], models[2];
+  for (int run = 0; run < 2; ++run) {
+    const std::string threads = run == 0 ? "1" : "3";
+    const std::string out = dir + "/r" + threads;
+    const RunResult v = RunProgram({"validate", "--data", DataDir() + "/Au-Ag", "--methods",
+                                    "eps-pchip,smooth,physical", "--angles", "0", "--threads",
+                                    threads, "--quiet", "--out", out});
+    ASSERT_EQ(v.status, 0) << v.err;
+    reports[run] = ReadText(out + "/report.json");
+    const std::string model = dir + "/m" + threads + ".json";
+    const RunResult f = RunProgram({"fit", "--data", DataDir() + "/Au-Ag", "--method", "physical",
+                                    "--threads", threads, "--quiet", "--out", model});
+    ASSERT_EQ(f.status, 0) << f.err;
+    models[run] = ReadText(model);
+  }
+  EXPECT_FALSE(reports[0].empty());
+  EXPECT_EQ(reports[0], reports[1]);
+  EXPECT_NE(models[0].find("\"uncertainty\""), std::string::npos);
+  EXPECT_EQ(models[0], models[1]);
+  EXPECT_EQ(RunProgram({"fit", "--data", DataDir() + "/Au-Ag", "--threads", "-2", "--out",
+                        dir + "/bad.json"}).status,
+            2);
+}
+
 }  // namespace
 }  // namespace alloycolor

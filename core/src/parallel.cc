@@ -11,6 +11,8 @@ std::atomic<int>& FreeThreads() {
 
 }  // namespace
 
+void SetParallelTaskThreads(int threads) { FreeThreads() = ThreadCount(threads) - 1; }
+
 void ParallelTasks(std::size_t count, const std::function<void(std::size_t)>& task) {
   std::vector<std::exception_ptr> errors(count);
   std::atomic<std::size_t> next{0};

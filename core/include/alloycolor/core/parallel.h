@@ -63,6 +63,11 @@ void ParallelFor(int count, int block, int threads, const Body& body) {
 // tasks must not share mutable state (each writes its own result).
 void ParallelTasks(std::size_t count, const std::function<void(std::size_t)>& task);
 
+// How many threads ParallelTasks may use in all (the caller's included): 0 for every core
+// of the machine (the default), 1 for the caller's thread alone. Call it while no tasks
+// run (a program sets it from its options before the work).
+void SetParallelTaskThreads(int threads);
+
 }  // namespace alloycolor
 
 #endif  // ALLOYCOLOR_CORE_PARALLEL_H_

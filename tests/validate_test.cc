@@ -417,7 +417,7 @@ TEST(Validate, TheSameOnOneThreadAsOnSeveral) {
     const std::string threads = run == 0 ? "1" : "3";
     const std::string out = dir + "/r" + threads;
     const RunResult v = RunProgram({"validate", "--data", DataDir() + "/Au-Ag", "--methods",
-                                    "eps-pchip,smooth,physical", "--angles", "0", "--threads",
+                                    "eps-pchip,smooth", "--angles", "0", "--threads",
                                     threads, "--quiet", "--out", out});
     ASSERT_EQ(v.status, 0) << v.err;
     reports[run] = ReadText(out + "/report.json");

@@ -31,7 +31,6 @@ struct FitOptions {
   std::string out;
   std::string from;
   int degree = -1;
-  int max_degree = 6;
   double smoothing = -1;
   double lambda_from = 0, lambda_to = 0, lambda_step = 0;
   bool no_covariance = false;
@@ -129,7 +128,6 @@ void Run(const FitOptions& o) {
   const auto start = std::chrono::steady_clock::now();
   fit::FitSettings settings;
   settings.degree = o.degree;
-  settings.max_degree = o.max_degree;
   settings.smoothing = o.smoothing;
   settings.terms = o.terms;
   settings.covariance = !o.no_covariance;
@@ -213,7 +211,8 @@ void RegisterFit(CLI::App& app) {
   cmd->add_option("--from", o->from,
                   "Refit: start from this earlier model and report what changed");
   cmd->add_option("--degree", o->degree,
-                  "physical: degree of every parameter's polynomial (default 2)")
+                  "physical: degree of every parameter's polynomial (default 2; lowered, with a "
+                  "warning, where the fit leaves physics)")
       ->check(NumberIn(0, 20, /*whole=*/true));
   cmd->add_option("--terms", o->terms,
                   "physical: interband terms, comma-separated: lorentz, cp (Etchegoin 2006 "
@@ -221,9 +220,6 @@ void RegisterFit(CLI::App& app) {
                   "term alone; auto: none for infrared data, else the best of "
                   "rioux-gap,rioux-edge / cp,cp / lorentz,lorentz,lorentz on the end samples")
       ->capture_default_str();
-  cmd->add_option("--max-degree", o->max_degree, "physical: largest degree the data may choose")
-      ->capture_default_str()
-      ->check(NumberIn(0, 20, /*whole=*/true));
   cmd->add_option("--smoothing", o->smoothing,
                   "smooth: weight of the roughness penalty across composition, 0 (interpolate) "
                   "to 1e6 (default: chosen by leave-one-composition-out cross-validation)")

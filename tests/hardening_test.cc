@@ -202,7 +202,6 @@ TEST(Bounds, OptionValuesAreChecked) {
                                                 {"--smoothing", "inf"},
                                                 {"--degree", "2.5"},
                                                 {"--degree", "1099511627776"},
-                                                {"--max-degree", "-3"},
                                                 {"--lambda-step", "1e-6"},
                                                 {"--lambda-step", "0.02"}}) {
     std::vector<std::string> args = {"fit",    "--data", "Au-Ag", "--method",

@@ -259,13 +259,13 @@ def _optional(value, default):
 
 
 def fit(dataset: Union[Dataset, str], method: str = "smooth", *, degree: Optional[int] = None,
-        max_degree: int = 6, smoothing: Optional[float] = None, terms: str = "auto",
+        smoothing: Optional[float] = None, terms: str = "auto",
         lambda_range_nm: Optional[Sequence[float]] = None, covariance: bool = True,
         progress: Optional[Callable[[str], None]] = None) -> Model:
     """Fits ``method`` (see :func:`methods`) to a data set, as ``alloycolor fit`` does.
 
-    degree: composition degree (physical; default 2); max_degree: the largest degree
-    (physical); smoothing: roughness penalty across composition (smooth; default: chosen
+    degree: composition degree (physical; default 2, lowered where the fit leaves physics);
+    smoothing: roughness penalty across composition (smooth; default: chosen
     by leave-one-composition-out, 0 interpolates); terms: interband terms (physical);
     lambda_range_nm: (from, to, step) of the fit grid; covariance: compute the physical
     fit's parameter covariance; progress: called with one-line messages. Every method
@@ -273,7 +273,7 @@ def fit(dataset: Union[Dataset, str], method: str = "smooth", *, degree: Optiona
     if not isinstance(dataset, Dataset):
         dataset = Dataset(dataset)
     lo, hi, step = (0.0, 0.0, 0.0) if lambda_range_nm is None else map(float, lambda_range_nm)
-    return Model(_core._fit(dataset._core, method, _optional(degree, -1), int(max_degree),
+    return Model(_core._fit(dataset._core, method, _optional(degree, -1),
                             float(_optional(smoothing, -1.0)), terms, lo, hi, step,
                             bool(covariance), progress))
 

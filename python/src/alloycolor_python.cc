@@ -335,13 +335,11 @@ PYBIND11_MODULE(_alloycolor, m) {
       });
 
   m.def("_fit",
-        [](const Dataset& dataset, const std::string& method, int degree, int max_degree,
-           double smoothing, const std::string& terms, double lambda_from_nm, double lambda_to_nm,
+        [](const Dataset& dataset, const std::string& method, int degree, double smoothing, const std::string& terms, double lambda_from_nm, double lambda_to_nm,
            double lambda_step_nm, bool covariance, const py::object& progress) {
           RequireMethod(method);
           fit::FitSettings settings;
           settings.degree = degree;
-          settings.max_degree = max_degree;
           settings.smoothing = smoothing;
           settings.terms = terms;
           settings.lambda_from_nm = lambda_from_nm;

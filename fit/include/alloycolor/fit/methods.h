@@ -21,7 +21,6 @@ namespace alloycolor::fit {
 
 struct FitSettings {
   int degree = -1;      // physical: composition degree; < 0: the method's default
-  int max_degree = 6;   // physical: the largest degree the data may choose
   double smoothing = -1;  // smooth: roughness penalty across composition; -1: cross-validated
   std::string terms = "auto";  // physical: interband terms
   // Fit grid: both 0 for the method's default range; step 0 for its default step.

@@ -39,20 +39,6 @@ HermiteBoundModel::HermiteBoundModel(std::vector<double> lambda_nm, std::vector<
       linear_(linear),
       passive_(passive) {}
 
-HermiteBoundModel::Knot HermiteBoundModel::KnotOf(std::vector<double> eps1,
-                                                  std::vector<double> eps2,
-                                                  std::vector<double> slope1,
-                                                  std::vector<double> slope2) {
-  Knot k;
-  k.slope1_below = slope1;
-  k.slope2_below = slope2;
-  k.slope1_above = std::move(slope1);
-  k.slope2_above = std::move(slope2);
-  k.eps1 = std::move(eps1);
-  k.eps2 = std::move(eps2);
-  return k;
-}
-
 void HermiteBoundModel::Permittivity(double x, double* eps1, double* eps2) const {
   const size_t m = lambda_nm().size(), n = knots_x_.size();
   const auto copy = [&](const Knot& k) {
@@ -75,8 +61,8 @@ void HermiteBoundModel::Permittivity(double x, double* eps1, double* eps2) const
     const bool below = x <= knots_x_.front();
     const Knot& k = below ? knots_.front() : knots_.back();
     const double dx = x - (below ? knots_x_.front() : knots_x_.back());
-    const double* s1 = below ? k.slope1_above.data() : k.slope1_below.data();
-    const double* s2 = below ? k.slope2_above.data() : k.slope2_below.data();
+    const double* s1 = k.slope1.data();
+    const double* s2 = k.slope2.data();
     WeightedSum(m, 1.0, k.eps1.data(), dx, s1, 0.0, k.eps1.data(), 0.0, s1, eps1);
     WeightedSum(m, 1.0, k.eps2.data(), dx, s2, 0.0, k.eps2.data(), 0.0, s2, eps2);
     if (passive_) AtLeastZero(m, eps2);
@@ -89,10 +75,10 @@ void HermiteBoundModel::Permittivity(double x, double* eps1, double* eps2) const
   const double w0 = 2 * t3 - 3 * t2 + 1, w1 = (t3 - 2 * t2 + t) * h, w2 = -2 * t3 + 3 * t2,
                w3 = (t3 - t2) * h;
   const Knot &a = knots_[lo], &b = knots_[hi];
-  WeightedSum(m, w0, a.eps1.data(), w1, a.slope1_above.data(), w2, b.eps1.data(), w3,
-              b.slope1_below.data(), eps1);
-  WeightedSum(m, w0, a.eps2.data(), w1, a.slope2_above.data(), w2, b.eps2.data(), w3,
-              b.slope2_below.data(), eps2);
+  WeightedSum(m, w0, a.eps1.data(), w1, a.slope1.data(), w2, b.eps1.data(), w3,
+              b.slope1.data(), eps1);
+  WeightedSum(m, w0, a.eps2.data(), w1, a.slope2.data(), w2, b.eps2.data(), w3,
+              b.slope2.data(), eps2);
   if (passive_) AtLeastZero(m, eps2);
 }
 

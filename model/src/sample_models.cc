@@ -197,11 +197,13 @@ std::unique_ptr<BoundModel> SampleModel::Bind(const std::vector<double>& lambda_
     // Per wavelength, the scheme's slopes through the samples' eps1 and eps2.
     const size_t n = nodes_.size();
     std::vector<HermiteBoundModel::Knot> knots(n);
+    const bool linear = kind_ == Kind::kEpsLinear;  // evaluated as lines: no slopes
     for (HermiteBoundModel::Knot& k : knots) {
-      for (auto* v : {&k.eps1, &k.eps2, &k.slope1_below, &k.slope2_below, &k.slope1_above,
-                      &k.slope2_above}) {
-        v->resize(m);
-      }
+      k.eps1.resize(m);
+      k.eps2.resize(m);
+      if (linear) continue;
+      k.slope1.resize(m);
+      k.slope2.resize(m);
     }
     std::vector<double> y1(n), y2(n), d1(n), d2(n);
     for (size_t i = 0; i < m; ++i) {
@@ -209,7 +211,7 @@ std::unique_ptr<BoundModel> SampleModel::Bind(const std::vector<double>& lambda_
         y1[j] = knots[j].eps1[i] = node_eps[j * m + i].re;
         y2[j] = knots[j].eps2[i] = node_eps[j * m + i].im;
       }
-      if (kind_ == Kind::kEpsLinear) continue;  // evaluated as lines, no slopes
+      if (linear) continue;
       if (kind_ == Kind::kEpsPchip) {
         PchipSlopes(node_x.data(), y1.data(), n, d1.data());
         PchipSlopes(node_x.data(), y2.data(), n, d2.data());
@@ -218,13 +220,12 @@ std::unique_ptr<BoundModel> SampleModel::Bind(const std::vector<double>& lambda_
         NaturalSplineSlopes(node_x.data(), y2.data(), n, d2.data());
       }
       for (size_t j = 0; j < n; ++j) {
-        knots[j].slope1_below[i] = knots[j].slope1_above[i] = d1[j];
-        knots[j].slope2_below[i] = knots[j].slope2_above[i] = d2[j];
+        knots[j].slope1[i] = d1[j];
+        knots[j].slope2[i] = d2[j];
       }
     }
     return std::make_unique<HermiteBoundModel>(lambda_nm, std::move(node_x), std::move(knots),
-                                               kind_ == Kind::kEpsLinear,
-                                               kind_ == Kind::kEpsSpline);
+                                               linear, kind_ == Kind::kEpsSpline);
   }
   std::vector<BoundPaperModel::Invertible> invertible(m);
   for (size_t i = 0; i < m; ++i) {

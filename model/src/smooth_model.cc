@@ -138,8 +138,7 @@ std::unique_ptr<BoundModel> SmoothModel::Bind(const std::vector<double>& lambda_
       d1[i] = lerp(slope1_);
       d2[i] = lerp(slope2_);
     }
-    knots.push_back(HermiteBoundModel::KnotOf(std::move(e1), std::move(e2), std::move(d1),
-                                              std::move(d2)));
+    knots.push_back({std::move(e1), std::move(e2), std::move(d1), std::move(d2)});
   }
   return std::make_unique<HermiteBoundModel>(lambda_nm, knots_x_, std::move(knots), false);
 }

@@ -286,6 +286,25 @@ TEST_F(AuAg, StaysPassiveAndBoundedEverywhereInItsRange) {
   }
 }
 
+// The end samples' fits are remembered for the process: a second fit of the same data
+// takes them from memory and must give the very file the first gave, and a fit of other
+// data in between (other ends, other terms) must not disturb it.
+TEST_F(AuAg, ARepeatedFitGivesTheSameBytes) {
+  fit::PhysicalFitOptions other;
+  other.terms = "lorentz,lorentz,lorentz";
+  fit::FitPhysical(WithoutSamples(*dataset_, {0.0}), other);
+  const auto again = fit::FitPhysical(*dataset_, fit::PhysicalFitOptions{});
+  EXPECT_EQ(ModelFileText(*again.model), ModelFileText(*model_));
+  // Each candidate's terms fitted its own end samples (what is remembered is per terms).
+  const nlohmann::json& candidates = model_->fit_summary().details.at("terms_candidates");
+  ASSERT_EQ(candidates.size(), 3u);
+  for (size_t i = 0; i < candidates.size(); ++i) {
+    for (size_t j = i + 1; j < candidates.size(); ++j) {
+      EXPECT_NE(candidates[i]["end_costs"], candidates[j]["end_costs"]) << candidates.dump();
+    }
+  }
+}
+
 // A leave-one-out fold started from the model fitted to all samples (as the prediction
 // error's folds are) reaches the fit a cold start reaches on the fold's data: the same
 // terms, and predictions at the held-out composition equal to 1e-3 relative (both fits

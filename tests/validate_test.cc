@@ -381,6 +381,43 @@ TEST(AutoMethod, ChoosesTheLowestLeaveOneOutScoreAndRecordsTheTable) {
   EXPECT_NE(selection["reason"].get<std::string>().find(chosen), std::string::npos);
 }
 
+// The one-standard-error rule, checked by hand on Nb-Sn: smooth has the lowest leave-one-
+// out mean and eps-pchip lies more than 10 % above it, but their fold-by-fold differences
+// (from `validate`'s leave-one-out, the same folds) have a mean within one standard error,
+// so auto takes the simpler eps-pchip and says why.
+TEST(AutoMethod, TakesTheSimplerMethodWithinTheFoldsScatter) {
+  const std::string dir = MakeTempDir();
+  const RunResult fit = RunProgram({"fit", "--data", "Nb-Sn", "--quiet", "--out", dir + "/a.json"});
+  ASSERT_EQ(fit.status, 0) << fit.err;
+  std::ifstream in(dir + "/a.json");
+  const nlohmann::json model = nlohmann::json::parse(in);
+  const RunResult loo = RunProgram({"validate", "--data", "Nb-Sn", "--loo", "--methods",
+                                    "eps-pchip,smooth", "--out", dir + "/v", "--quiet"});
+  ASSERT_EQ(loo.status, 0) << loo.err;
+  std::ifstream rin(dir + "/v/report.json");
+  const nlohmann::json report = nlohmann::json::parse(rin);
+  std::vector<double> d;
+  double pchip = 0, smooth = 0;
+  for (const auto& h : report["holdouts"]) {
+    const double a = h["results"]["eps-pchip"]["reflectance_rms"].get<double>();
+    const double b = h["results"]["smooth"]["reflectance_rms"].get<double>();
+    d.push_back(a - b);
+    pchip += a;
+    smooth += b;
+  }
+  ASSERT_GE(d.size(), 3u);
+  ASSERT_GT(pchip, 1.10 * smooth);  // the 10 % rule alone would not take eps-pchip
+  double mean = 0, sq = 0;
+  for (double v : d) mean += v / d.size();
+  for (double v : d) sq += (v - mean) * (v - mean);
+  const double se = std::sqrt(sq / (d.size() - 1) / d.size());
+  ASSERT_LE(mean, se);
+  EXPECT_EQ(model["method"], "eps-pchip");
+  const std::string reason = model["fit"]["selection"]["reason"];
+  EXPECT_NE(reason.find("one standard error"), std::string::npos) << reason;
+  EXPECT_NE(reason.find("smooth"), std::string::npos) << reason;
+}
+
 // A method that fails on every split (the physical fit refuses Querry's zinc) is reported
 // failed beside the others; the printed coverage counts agree with report.json.
 TEST(Validate, AMethodFailingEverywhereIsReportedBesideTheOthers) {

@@ -252,10 +252,11 @@ std::unique_ptr<AlloyModel> BuildWithFolds(const std::string& method, const Data
 }
 
 // auto's score of a method: its folds' held-out samples scored as `validate` scores them
-// (ComputeValidation, given the folds' models), mean over the folds.
+// (ComputeValidation, given the folds' models), mean over the folds; `values`: each
+// held-out sample's score, in the folds' order.
 MethodScore ScoreFolds(const std::string& method, const Dataset& dataset,
                        std::vector<Fold>& folds, const color::Colorimeter& colorimeter,
-                       std::string* metric) {
+                       std::string* metric, std::vector<double>* values) {
   MethodScore score;
   score.method = method;
   std::vector<std::vector<double>> splits;
@@ -285,6 +286,7 @@ MethodScore ScoreFolds(const std::string& method, const Dataset& dataset,
     const double v = !r.delta_e00.empty() ? r.delta_e00[0] : r.reflectance_rms;
     if (!std::isfinite(v)) continue;
     sum += v;
+    values->push_back(v);
     score.max = score.folds == 0 ? v : std::max(score.max, v);
     ++score.folds;
     if (!r.delta_e00.empty()) *metric = "delta_e00 at normal incidence";
@@ -333,6 +335,7 @@ std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings&
   inner.progress = {};
   inner.start = nullptr;
   std::vector<std::unique_ptr<AlloyModel>> models;
+  std::vector<std::vector<double>> values(order.size());  // per fold, for the paired test
   for (const std::string& method : order) {
     Report(settings.progress, "auto: scoring " + method + " by leave-one-out over " +
                                   std::to_string(held_out) + " interior compositions");
@@ -342,7 +345,8 @@ std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings&
     try {
       std::vector<Fold> folds;
       model = BuildWithFolds(method, dataset, inner, &folds);
-      score = ScoreFolds(method, dataset, folds, *settings.colorimeter, &selection.metric);
+      score = ScoreFolds(method, dataset, folds, *settings.colorimeter, &selection.metric,
+                         &values[models.size()]);
     } catch (const Error& e) {
       score.error = e.what();
       model.reset();
@@ -352,16 +356,31 @@ std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings&
     models.push_back(std::move(model));
   }
   if (selection.metric.empty()) selection.metric = "reflectance_rms at normal incidence";
-  // The simplest method within kAutoTolerance of the lowest score: leave-one-out with few
-  // samples flatters the flexible methods.
-  double best = 1e300;
-  for (const MethodScore& s : selection.scores) {
-    if (s.error.empty()) best = std::min(best, s.mean);
-  }
-  size_t chosen = order.size();
+  // The simplest method within kAutoTolerance of the lowest score, or not worse than it by
+  // more than the standard error of their fold-by-fold differences (the one-standard-error
+  // rule, on paired folds, from three folds up): leave-one-out with few samples flatters
+  // the flexible methods, and a lead within the folds' own scatter is no lead.
+  size_t best = order.size();
   for (size_t i = 0; i < selection.scores.size(); ++i) {
     const MethodScore& s = selection.scores[i];
-    if (s.error.empty() && s.mean <= best * kAutoTolerance) {
+    if (s.error.empty() && (best == order.size() || s.mean < selection.scores[best].mean)) best = i;
+  }
+  const auto within_scatter = [&](size_t i) {
+    const std::vector<double>& a = values[i];
+    const std::vector<double>& b = values[best];
+    if (a.size() != b.size() || a.size() < 3) return false;
+    double mean = 0, sq = 0;
+    for (size_t k = 0; k < a.size(); ++k) mean += a[k] - b[k];
+    mean /= a.size();
+    for (size_t k = 0; k < a.size(); ++k) sq += std::pow(a[k] - b[k] - mean, 2);
+    const double se = std::sqrt(sq / (a.size() - 1) / a.size());
+    return mean <= se;
+  };
+  size_t chosen = order.size();
+  for (size_t i = 0; best != order.size() && i < selection.scores.size(); ++i) {
+    const MethodScore& s = selection.scores[i];
+    if (s.error.empty() &&
+        (s.mean <= selection.scores[best].mean * kAutoTolerance || within_scatter(i))) {
       chosen = i;
       break;
     }
@@ -369,11 +388,24 @@ std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings&
   if (chosen == order.size()) {
     throw Error(dataset.manifest_path + ": auto: no method could be scored");
   }
-  const MethodScore& best_score = selection.scores[chosen];
-  char reason[160];
-  std::snprintf(reason, sizeof reason, "%s: lowest leave-one-out mean %s, %.4g over %d folds",
-                order[chosen].c_str(), selection.metric.c_str(), best_score.mean,
-                best_score.folds);
+  const MethodScore& chosen_score = selection.scores[chosen];
+  const MethodScore& best_score = selection.scores[best];
+  char reason[240];
+  if (chosen == best) {
+    std::snprintf(reason, sizeof reason, "%s: lowest leave-one-out mean %s, %.4g over %d folds",
+                  order[chosen].c_str(), selection.metric.c_str(), chosen_score.mean,
+                  chosen_score.folds);
+  } else {
+    std::snprintf(reason, sizeof reason,
+                  "%s: leave-one-out mean %s %.4g over %d folds, the simplest within %s of the "
+                  "lowest (%s, %.4g)",
+                  order[chosen].c_str(), selection.metric.c_str(), chosen_score.mean,
+                  chosen_score.folds,
+                  chosen_score.mean <= best_score.mean * kAutoTolerance
+                      ? "10 %"
+                      : "one standard error of the folds' differences",
+                  order[best].c_str(), best_score.mean);
+  }
   selection.reason = reason;
   std::unique_ptr<AlloyModel> model = std::move(models[chosen]);
   Report(settings.progress, "auto: " + selection.reason);

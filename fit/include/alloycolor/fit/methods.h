@@ -49,9 +49,10 @@ struct MethodBuilder {
 // its leave-one-composition-out folds (those of its prediction error, see BuildModel: each
 // interior composition held out in turn, 20 at most), and scored on the folds' held-out
 // samples as `validate` scores them (mean CIEDE2000 at normal incidence, or reflectance RMS
-// for data without colour); the simplest method whose mean lies within 10 % of the lowest
-// wins (simplest first: eps-pchip, eps-linear, eps-spline, paper, smooth, physical), since
-// leave-one-out with few samples flatters the flexible methods. With fewer than three
+// for data without colour); the simplest method whose mean lies within 10 % of the lowest,
+// or above it by no more than one standard error of their fold-by-fold differences (from
+// three folds), wins (simplest first: eps-pchip, eps-linear, eps-spline, paper, smooth,
+// physical), since leave-one-out with few samples flatters the flexible methods. With fewer than three
 // compositions nothing can be held out and eps-pchip is chosen (with two samples every
 // interpolation is the line). The chosen model carries the table (FitSummary::selection).
 inline constexpr const char* kAutoMethod = "auto";

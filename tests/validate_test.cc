@@ -123,7 +123,8 @@ TEST_F(AuAgHoldout, ReportJsonHasTheDocumentedShape) {
   EXPECT_NE(run_->out.find("delta_e00_0"), std::string::npos);
 }
 
-// The measured and predicted colours recomputed here from files, as a user would.
+// The measured and predicted colours recomputed here from files, as a user would: both
+// over the colorimeter's whole range (360-830 nm, which the data and so the models cover).
 TEST_F(AuAgHoldout, DeltaE00AgreesWithPredictOutput) {
   const color::Colorimeter colorimeter = color::Colorimeter::Load(DataDir(), "D65", 2);
   const NkSpectrum measured = ReadNkFile(DataDir() + "/Au-Ag/Rioux-Au30Ag70.yml");
@@ -134,7 +135,7 @@ TEST_F(AuAgHoldout, DeltaE00AgreesWithPredictOutput) {
     const RunResult fit = RunProgram({"fit", "--data", DataDir() + "/Au-Ag", "--exclude", "0.3,0.7",
                                       "--method", method, "--out", model, "--quiet"});
     ASSERT_EQ(fit.status, 0) << fit.err;
-    const RunResult predict = RunProgram({"predict", "--model", model, "--x", "0.3"});
+    const RunResult predict = RunProgram({"predict", "--model", model, "--x", "0.3", "--from", "360", "--to", "830", "--step", "1"});
     ASSERT_EQ(predict.status, 0) << predict.err;
     const std::string csv = *dir_ + "/" + method + ".csv";
     testing::WriteText(csv, predict.out);

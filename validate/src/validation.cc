@@ -61,20 +61,6 @@ std::vector<std::complex<double>> MeasuredIndex(const NkSpectrum& nk,
   return index;
 }
 
-// The predicted index on the colorimeter's grid held inside 380-780 nm: the spectrum
-// `alloycolor predict` writes by default, integrated as `alloycolor color --nk` would.
-std::vector<std::complex<double>> PredictedColourIndex(const color::Colorimeter& colorimeter,
-                                                       const AlloyModel& model, double x) {
-  if (model.lambda_min_nm() > kVisibleMinNm + 1e-9 || model.lambda_max_nm() < kVisibleMaxNm - 1e-9) {
-    // Throws the standard message naming the model's range.
-    color::EvaluationGrid(colorimeter, model.lambda_min_nm(), model.lambda_max_nm(),
-                           "the " + model.method() + " model");
-  }
-  const std::vector<double> grid =
-      color::EvaluationGrid(colorimeter, kVisibleMinNm, kVisibleMaxNm, model.method());
-  return model.Index(x, grid);
-}
-
 struct Colour {
   std::vector<color::Lab> lab;
   std::vector<std::array<std::uint8_t, 3>> srgb8;
@@ -227,7 +213,9 @@ MethodResult Evaluate(const AlloyModel& model, const Sample& sample,
   if (!holdout->lab.empty()) {
     std::vector<std::complex<double>> index;
     try {
-      index = PredictedColourIndex(colorimeter, model, sample.x_atomic);
+      // On the colorimeter's grid as the measured colour is (held at the model's range
+      // edges only where it stops short): `alloycolor color --model` gives the same.
+      index = color::IndexOnGrid(colorimeter, model, sample.x_atomic);
     } catch (const Error& e) {
       r.error = std::string("no colour: ") + e.what();
       return r;

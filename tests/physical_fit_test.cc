@@ -10,6 +10,8 @@
 #include <complex>
 #include <random>
 
+#include "alloycolor/color/colorimetry.h"
+#include "alloycolor/fit/methods.h"
 #include "alloycolor/fit/physical_costs.h"
 #include "alloycolor/core/dataset.h"
 #include "alloycolor/core/error.h"
@@ -142,11 +144,12 @@ TEST(PhysicalCosts, JacobianMatchesFiniteDifferences) {
   }
 }
 
-// Synthetic data from known parameters: values at x = 0, 0.5, 1, quadratic in r.
+// Synthetic data from known parameters: values at x = 0, 0.5, 1, quadratic in r; without
+// bowing, the straight line in r between the ends (the middle values unused).
 struct Truth {
   PhysicalLayout layout{{TermKind::kCriticalPoint, TermKind::kCriticalPoint}, 2};
   std::vector<double> coeffs;
-  Truth() {
+  explicit Truth(bool bowing = true) {
     // eps_inf, wp, gamma; A, E0, G, phi; A, E0, G, phi at x = 0, 0.5, 1 (a metal turning
     // into Etchegoin's gold). A critical point with phi != 0 adds negative eps2 away from
     // its centre; these values keep the total eps2 > 0.
@@ -184,6 +187,10 @@ struct Truth {
       coeffs[k * 3] = f0 + c2 / 2.0;
       coeffs[k * 3 + 1] = (fp - fm) / 2.0;
       coeffs[k * 3 + 2] = c2;
+      if (!bowing) {
+        coeffs[k * 3] = (fm + fp) / 2.0;
+        coeffs[k * 3 + 2] = 0;
+      }
     }
   }
   std::vector<double> ValuesAt(double x) const {
@@ -251,6 +258,36 @@ TEST(PhysicalFit, RecoversKnownParametersWithinTheirUncertainty) {
       EXPECT_LT(std::abs(fitted[k].value - v[k]), 4 * fitted[k].sigma)
           << fitted[k].name << " of term " << fitted[k].term << " at x = " << x;
       EXPECT_LT(fitted[k].sigma, 0.05 * std::abs(v[k]) + 0.01) << fitted[k].name;
+    }
+  }
+}
+
+// Left to the data (no --degree), the composition degree is scored by leave-one-out: where
+// the truth bows (gamma 0.06, 0.12, 0.073 at x = 0, 0.5, 1, as Nordheim's rule has it) the
+// straight line loses by far and a bending degree is chosen; where every parameter is a
+// straight line, degree 1 (the simplest, no higher degree doing better).
+TEST(PhysicalFit, TheDataChooseTheCompositionDegree) {
+  const color::Colorimeter colorimeter = color::Colorimeter::Load(DataDir(), "D65", 2);
+  for (const bool bowing : {true, false}) {
+    SCOPED_TRACE(bowing ? "bowing" : "straight");
+    const Dataset data = LoadDataset(
+        WriteSyntheticDataset(Truth(bowing), {0.0, 0.2, 0.4, 0.6, 0.8, 1.0}, 1e-4));
+    fit::FitSettings settings;
+    settings.terms = "cp,cp";
+    settings.colorimeter = &colorimeter;
+    const auto model = fit::BuildModel("physical", data, settings);
+    const nlohmann::json& details = model->fit_summary().details;
+    if (bowing) {
+      EXPECT_GE(model->fit_summary().degree, 2) << details.dump();
+    } else {
+      EXPECT_EQ(model->fit_summary().degree, 1) << details.dump();
+    }
+    ASSERT_EQ(details["degree_selection"].size(), 3u);  // degrees 1, 2, 3 scored
+    for (const auto& row : details["degree_selection"]) EXPECT_TRUE(row.contains("mean")) << row;
+    if (bowing) {
+      // The straight line misses the bowing by far more than the noise.
+      EXPECT_GT(details["degree_selection"][0]["mean"].get<double>(),
+                10 * details["degree_selection"][1]["mean"].get<double>());
     }
   }
 }

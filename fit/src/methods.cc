@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <nlohmann/json.hpp>
 
 #include "alloycolor/core/error.h"
 #include "alloycolor/color/colorimetry.h"
@@ -259,6 +260,7 @@ MethodScore ScoreFolds(const std::string& method, const Dataset& dataset,
                        std::string* metric, std::vector<double>* values) {
   MethodScore score;
   score.method = method;
+  *metric = "reflectance_rms at normal incidence";  // data without colour
   std::vector<std::vector<double>> splits;
   for (const Fold& f : folds) splits.push_back({f.x});
   validate::ValidationOptions options;
@@ -300,15 +302,151 @@ MethodScore ScoreFolds(const std::string& method, const Dataset& dataset,
   return score;
 }
 
+constexpr double kAutoTolerance = 1.10;
+
+// A candidate built on all samples with its folds (which also gave its prediction error),
+// scored on them.
+struct Scored {
+  std::unique_ptr<AlloyModel> model;  // null where it could not be built or scored
+  MethodScore score;
+  std::vector<double> values;  // each held-out sample's score, in the folds' order
+  std::string metric;
+};
+
+Scored BuildScored(const std::string& method, const Dataset& dataset,
+                   const FitSettings& settings) {
+  Scored r;
+  r.score.method = method;
+  try {
+    std::vector<Fold> folds;
+    r.model = BuildWithFolds(method, dataset, settings, &folds);
+    r.score = ScoreFolds(method, dataset, folds, *settings.colorimeter, &r.metric, &r.values);
+  } catch (const Error& e) {
+    r.score.error = e.what();
+  }
+  if (!r.score.error.empty()) r.model.reset();
+  return r;
+}
+
+// The one-standard-error choice among candidates listed simplest first: the first whose
+// mean lies within kAutoTolerance of the lowest, or above it by no more than the standard
+// error of their fold-by-fold differences (paired folds, from three folds up):
+// leave-one-out with few samples flatters the flexible candidates, and a lead within the
+// folds' own scatter is no lead. `chosen` and `best` are candidates.size() when none
+// could be scored.
+struct Choice {
+  size_t chosen, best;
+  std::string rule;  // why the chosen, if it is not the best: "10 %" or the standard error
+};
+
+Choice ChooseSimplest(const std::vector<Scored>& candidates) {
+  const size_t none = candidates.size();
+  Choice c{none, none, ""};
+  for (size_t i = 0; i < candidates.size(); ++i) {
+    const MethodScore& s = candidates[i].score;
+    if (s.error.empty() && (c.best == none || s.mean < candidates[c.best].score.mean)) c.best = i;
+  }
+  if (c.best == none) return c;
+  const auto within_scatter = [&](size_t i) {
+    const std::vector<double>& a = candidates[i].values;
+    const std::vector<double>& b = candidates[c.best].values;
+    if (a.size() != b.size() || a.size() < 3) return false;
+    double mean = 0, sq = 0;
+    for (size_t k = 0; k < a.size(); ++k) mean += a[k] - b[k];
+    mean /= a.size();
+    for (size_t k = 0; k < a.size(); ++k) sq += std::pow(a[k] - b[k] - mean, 2);
+    const double se = std::sqrt(sq / (a.size() - 1) / a.size());
+    return mean <= se;
+  };
+  const double lowest = candidates[c.best].score.mean;
+  for (size_t i = 0; i < candidates.size(); ++i) {
+    const MethodScore& s = candidates[i].score;
+    if (!s.error.empty()) continue;
+    const bool close = s.mean <= lowest * kAutoTolerance;
+    if (close || within_scatter(i)) {
+      c.chosen = i;
+      if (i != c.best) c.rule = close ? "10 %" : "one standard error of the folds' differences";
+      return c;
+    }
+  }
+  return c;
+}
+
+// The physical fit's composition degree chosen by the data: degrees 1 up to 3 (and to
+// two below the number of compositions, so that every fold fits the same degree), each
+// built with its folds and scored on them, the simplest within the folds' scatter of the
+// lowest (ChooseSimplest). Fewer than four compositions cannot tell degrees apart: the
+// default degree then. The table and the reason go into the fit summary.
+Scored BuildPhysicalChoosingDegree(const Dataset& dataset, const FitSettings& settings) {
+  const int compositions = static_cast<int>(DistinctCompositions(dataset).size());
+  const int top = std::min(3, compositions - 2);
+  if (settings.colorimeter == nullptr || ErrorFolds(dataset).size() < 2 || top < 2) {
+    return BuildScored("physical", dataset, settings);
+  }
+  std::vector<Scored> candidates;
+  for (int degree = 1; degree <= top; ++degree) {
+    Report(settings.progress, "physical: degree " + std::to_string(degree) +
+                                  ", leave-one-out over " +
+                                  std::to_string(ErrorFolds(dataset).size()) + " compositions");
+    FitSettings at = settings;
+    at.degree = degree;
+    at.progress = {};
+    Scored r = BuildScored("physical", dataset, at);
+    if (r.model && r.model->fit_summary().degree != degree) {
+      r.score.error = "left physics at degree " + std::to_string(degree);
+      r.model.reset();
+    }
+    candidates.push_back(std::move(r));
+  }
+  const Choice c = ChooseSimplest(candidates);
+  if (c.chosen == candidates.size()) {
+    // No degree could be scored: the default fit says why (or succeeds on its own).
+    return BuildScored("physical", dataset, settings);
+  }
+  Scored chosen = std::move(candidates[c.chosen]);
+  const int degree = chosen.model->fit_summary().degree;
+  char reason[200];
+  std::snprintf(reason, sizeof reason, "leave-one-out mean %s %.4g over %d folds%s%s",
+                chosen.metric.c_str(), chosen.score.mean, chosen.score.folds,
+                c.rule.empty() ? ", the lowest" : ", the lowest degree within ",
+                c.rule.c_str());
+  FitSummary summary = chosen.model->fit_summary();
+  nlohmann::json table = nlohmann::json::array();
+  for (size_t i = 0; i < candidates.size(); ++i) {
+    const MethodScore& s = i == c.chosen ? chosen.score : candidates[i].score;
+    nlohmann::json row = {{"degree", static_cast<int>(i) + 1}};
+    if (s.error.empty()) {
+      row["mean"] = s.mean;
+      row["max"] = s.max;
+      row["folds"] = s.folds;
+    } else {
+      row["error"] = s.error;
+    }
+    table.push_back(row);
+  }
+  summary.details["degree_chosen_by"] = reason;
+  summary.details["degree_selection"] = table;
+  chosen.model->set_fit_summary(std::move(summary));
+  Report(settings.progress, "physical: degree " + std::to_string(degree) + ": " + reason);
+  return chosen;
+}
+
+bool ChoosesDegree(const std::string& method, const FitSettings& settings) {
+  return method == "physical" && settings.degree < 0 && !settings.fold;
+}
+
 }  // namespace
 
 std::unique_ptr<AlloyModel> BuildModel(const std::string& method, const Dataset& dataset,
                                        const FitSettings& settings) {
   if (method == kAutoMethod) return BuildAuto(dataset, settings);
+  if (ChoosesDegree(method, settings)) {
+    Scored r = BuildPhysicalChoosingDegree(dataset, settings);
+    if (!r.model) throw Error(r.score.error);
+    return std::move(r.model);
+  }
   return BuildWithFolds(method, dataset, settings, nullptr);
 }
-
-constexpr double kAutoTolerance = 1.10;
 
 std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings& settings) {
   // Simplest first: ties go to the earlier.
@@ -334,80 +472,36 @@ std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings&
   FitSettings inner = settings;
   inner.progress = {};
   inner.start = nullptr;
-  std::vector<std::unique_ptr<AlloyModel>> models;
-  std::vector<std::vector<double>> values(order.size());  // per fold, for the paired test
+  std::vector<Scored> candidates;
   for (const std::string& method : order) {
     Report(settings.progress, "auto: scoring " + method + " by leave-one-out over " +
                                   std::to_string(held_out) + " interior compositions");
-    MethodScore score;
-    score.method = method;
-    std::unique_ptr<AlloyModel> model;
-    try {
-      std::vector<Fold> folds;
-      model = BuildWithFolds(method, dataset, inner, &folds);
-      score = ScoreFolds(method, dataset, folds, *settings.colorimeter, &selection.metric,
-                         &values[models.size()]);
-    } catch (const Error& e) {
-      score.error = e.what();
-      model.reset();
-    }
-    if (!score.error.empty()) model.reset();
-    selection.scores.push_back(score);
-    models.push_back(std::move(model));
+    candidates.push_back(ChoosesDegree(method, inner)
+                             ? BuildPhysicalChoosingDegree(dataset, inner)
+                             : BuildScored(method, dataset, inner));
+    selection.scores.push_back(candidates.back().score);
+    if (selection.metric.empty()) selection.metric = candidates.back().metric;
   }
-  if (selection.metric.empty()) selection.metric = "reflectance_rms at normal incidence";
-  // The simplest method within kAutoTolerance of the lowest score, or not worse than it by
-  // more than the standard error of their fold-by-fold differences (the one-standard-error
-  // rule, on paired folds, from three folds up): leave-one-out with few samples flatters
-  // the flexible methods, and a lead within the folds' own scatter is no lead.
-  size_t best = order.size();
-  for (size_t i = 0; i < selection.scores.size(); ++i) {
-    const MethodScore& s = selection.scores[i];
-    if (s.error.empty() && (best == order.size() || s.mean < selection.scores[best].mean)) best = i;
-  }
-  const auto within_scatter = [&](size_t i) {
-    const std::vector<double>& a = values[i];
-    const std::vector<double>& b = values[best];
-    if (a.size() != b.size() || a.size() < 3) return false;
-    double mean = 0, sq = 0;
-    for (size_t k = 0; k < a.size(); ++k) mean += a[k] - b[k];
-    mean /= a.size();
-    for (size_t k = 0; k < a.size(); ++k) sq += std::pow(a[k] - b[k] - mean, 2);
-    const double se = std::sqrt(sq / (a.size() - 1) / a.size());
-    return mean <= se;
-  };
-  size_t chosen = order.size();
-  for (size_t i = 0; best != order.size() && i < selection.scores.size(); ++i) {
-    const MethodScore& s = selection.scores[i];
-    if (s.error.empty() &&
-        (s.mean <= selection.scores[best].mean * kAutoTolerance || within_scatter(i))) {
-      chosen = i;
-      break;
-    }
-  }
-  if (chosen == order.size()) {
+  const Choice c = ChooseSimplest(candidates);
+  if (c.chosen == order.size()) {
     throw Error(dataset.manifest_path + ": auto: no method could be scored");
   }
-  const MethodScore& chosen_score = selection.scores[chosen];
-  const MethodScore& best_score = selection.scores[best];
+  const MethodScore& chosen_score = selection.scores[c.chosen];
+  const MethodScore& best_score = selection.scores[c.best];
   char reason[240];
-  if (chosen == best) {
+  if (c.rule.empty()) {
     std::snprintf(reason, sizeof reason, "%s: lowest leave-one-out mean %s, %.4g over %d folds",
-                  order[chosen].c_str(), selection.metric.c_str(), chosen_score.mean,
+                  order[c.chosen].c_str(), selection.metric.c_str(), chosen_score.mean,
                   chosen_score.folds);
   } else {
     std::snprintf(reason, sizeof reason,
                   "%s: leave-one-out mean %s %.4g over %d folds, the simplest within %s of the "
                   "lowest (%s, %.4g)",
-                  order[chosen].c_str(), selection.metric.c_str(), chosen_score.mean,
-                  chosen_score.folds,
-                  chosen_score.mean <= best_score.mean * kAutoTolerance
-                      ? "10 %"
-                      : "one standard error of the folds' differences",
-                  order[best].c_str(), best_score.mean);
+                  order[c.chosen].c_str(), selection.metric.c_str(), chosen_score.mean,
+                  chosen_score.folds, c.rule.c_str(), order[c.best].c_str(), best_score.mean);
   }
   selection.reason = reason;
-  std::unique_ptr<AlloyModel> model = std::move(models[chosen]);
+  std::unique_ptr<AlloyModel> model = std::move(candidates[c.chosen].model);
   Report(settings.progress, "auto: " + selection.reason);
   FitSummary summary = model->fit_summary();
   summary.selection = selection;

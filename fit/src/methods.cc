@@ -202,11 +202,10 @@ void EstimatePredictionError(std::vector<Fold>& fitted, const Dataset& dataset,
   error.compositions = DistinctCompositions(dataset);
   error.reference_gap = reference_gap;
   error.folds = static_cast<int>(done.size());
-  // Calibration on colour: RMS over folds of observed / predicted one-sigma CIEDE2000.
+  // Calibration on colour: the folds' observed / predicted one-sigma CIEDE2000.
   if (settings.colorimeter != nullptr && CoversVisible(lo, hi)) {
     const color::Colorimeter& cm = *settings.colorimeter;
-    double ratio_sq = 0;
-    int ratios = 0;
+    std::vector<double> log_ratios;
     for (Fold* fp : done) {
       Fold& f = *fp;
       PredictionError fold_error = error;
@@ -220,16 +219,11 @@ void EstimatePredictionError(std::vector<Fold>& fitted, const Dataset& dataset,
       for (const Sample* s : f.held) {
         const color::Lab truth = color::LabFromXYZ(
             color::MaterialXYZ(cm, color::IndexOnGrid(cm, s->nk), 0.0), cm.White());
-        ratio_sq += std::pow(color::DeltaE00(truth, predicted) / sigma, 2);
-        ++ratios;
+        const double ratio = color::DeltaE00(truth, predicted) / sigma;
+        if (ratio > 0 && std::isfinite(ratio)) log_ratios.push_back(std::log(ratio));
       }
     }
-    if (ratios > 0 && ratio_sq > 0) {
-      // The RMS ratio from f folds, widened by sqrt(1 + 1/f) as a prediction interval is
-      // for the spread estimated from f values.
-      error.calibration =
-          std::clamp(std::sqrt(ratio_sq / ratios * (1.0 + 1.0 / ratios)), 1e-3, 1e3);
-    }
+    if (!log_ratios.empty()) error.calibration = SigmaCalibration(log_ratios);
   }
   model->set_prediction_error(std::move(error));
 }
@@ -436,6 +430,20 @@ bool ChoosesDegree(const std::string& method, const FitSettings& settings) {
 }
 
 }  // namespace
+
+double SigmaCalibration(const std::vector<double>& log_ratios) {
+  if (log_ratios.empty()) return 1;
+  constexpr double kPriorLogSpread = 0.3, kPriorFolds = 2;
+  const double f = static_cast<double>(log_ratios.size());
+  double mu = 0, sq = 0;
+  for (double v : log_ratios) mu += v;
+  mu /= f;
+  for (double v : log_ratios) sq += (v - mu) * (v - mu);
+  const double s2 = (kPriorFolds * kPriorLogSpread * kPriorLogSpread + sq) / (kPriorFolds + f - 1);
+  const double spread = std::sqrt(s2 * (1 + 1 / f));
+  const double c = std::max(std::exp(mu + 0.4677 * spread), std::exp(mu + 1.6449 * spread) / 2);
+  return std::clamp(c, 1e-3, 1e3);
+}
 
 std::unique_ptr<AlloyModel> BuildModel(const std::string& method, const Dataset& dataset,
                                        const FitSettings& settings) {

@@ -58,6 +58,13 @@ struct MethodBuilder {
 inline constexpr const char* kAutoMethod = "auto";
 std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings& settings);
 
+// The calibration of a prediction error's one-sigma colour uncertainty from its folds'
+// log ratios of observed to uncalibrated predicted CIEDE2000 (docs/model-format.md): the
+// ratios taken as log-normal, their variance pooled with a prior spread of 0.3 worth two
+// folds and widened by (1 + 1/f); the factor puts 68 % of new ratios inside one sigma, or
+// 95 % inside two where the spread is wide. 1 for no folds; clamped to 1e-3..1e3.
+double SigmaCalibration(const std::vector<double>& log_ratios);
+
 // One builder per entry of Methods(), in the same order.
 const std::vector<MethodBuilder>& Builders();
 

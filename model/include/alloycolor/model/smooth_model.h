@@ -6,6 +6,8 @@
 // knots x_1 < ... < x_K in composition (the training compositions, or quantiles of them
 // when there are many); the fit chooses the knot values under a roughness penalty, so the
 // curve is an interpolation of sparse data and a regression through noisy or dense data.
+// The fit's second form, a Gaussian process across composition, is stored the same way:
+// its mean at evenly spaced knots.
 // Between nodes eps is linear in wavelength. Why eps: across composition it varies most
 // gently of the quantities tried (n, k; 1 / (1 - eps); ln gamma and ln wp^2 of the Drude
 // inversion, which carries interband absorption and spans orders of magnitude), and PCHIP

@@ -61,10 +61,11 @@ std::unique_ptr<AlloyModel> BuildPhysical(const Dataset& dataset, const FitSetti
   options.terms = settings.terms;
   options.covariance = settings.covariance && !settings.fold;
   options.check_physics = !settings.fold;
+  if (settings.max_iterations > 0) options.max_iterations = settings.max_iterations;
   // A fold starts at its parent's solution (warm): a fifth of the iterations is plenty
   // where the form fits, and where it does not (a degree too low) the fold's error is
   // plain long before.
-  if (settings.fold) options.max_iterations /= 5;
+  if (settings.fold) options.max_iterations = std::max(1, options.max_iterations / 5);
   options.progress = settings.progress;
   options.start = dynamic_cast<const PhysicalModel*>(settings.start);
   if (settings.lambda_from_nm != 0 || settings.lambda_to_nm != 0) {
@@ -301,6 +302,7 @@ MethodScore ScoreFolds(const std::string& method, const Dataset& dataset,
 }
 
 constexpr double kAutoTolerance = 1.10;
+constexpr int kCandidateIterations = 100;  // a physical degree candidate's solver budget
 
 // A candidate built on all samples with its folds (which also gave its prediction error),
 // scored on them.
@@ -381,6 +383,8 @@ Scored BuildPhysicalChoosingDegree(const Dataset& dataset, const FitSettings& se
   if (settings.colorimeter == nullptr || ErrorFolds(dataset).size() < 2 || top < 2) {
     return BuildScored("physical", dataset, settings);
   }
+  // Candidates on a fifth of the iterations and without covariance: a degree that does
+  // not fit the data shows it long before, and the chosen one is finished below.
   std::vector<Scored> candidates;
   for (int degree = 1; degree <= top; ++degree) {
     Report(settings.progress, "physical: degree " + std::to_string(degree) +
@@ -389,9 +393,12 @@ Scored BuildPhysicalChoosingDegree(const Dataset& dataset, const FitSettings& se
     FitSettings at = settings;
     at.degree = degree;
     at.progress = {};
+    at.covariance = false;
+    at.max_iterations = kCandidateIterations;
     Scored r = BuildScored("physical", dataset, at);
     if (r.model && r.model->fit_summary().degree != degree) {
-      r.score.error = "left physics at degree " + std::to_string(degree);
+      r.score.error = "lowered to degree " + std::to_string(r.model->fit_summary().degree) +
+                      " (it left physics or did not converge)";
       r.model.reset();
     }
     candidates.push_back(std::move(r));
@@ -403,6 +410,19 @@ Scored BuildPhysicalChoosingDegree(const Dataset& dataset, const FitSettings& se
   }
   Scored chosen = std::move(candidates[c.chosen]);
   const int degree = chosen.model->fit_summary().degree;
+  {
+    // Finished from where the candidate stopped, with the covariance; its folds' prediction
+    // error carries over (the folds started from the candidate).
+    FitSettings full = settings;
+    full.degree = degree;
+    full.calibrate = false;
+    full.start = chosen.model.get();
+    std::unique_ptr<AlloyModel> finished = BuildWithFolds("physical", dataset, full, nullptr);
+    if (chosen.model->prediction_error().present()) {
+      finished->set_prediction_error(chosen.model->prediction_error());
+    }
+    chosen.model = std::move(finished);
+  }
   char reason[200];
   std::snprintf(reason, sizeof reason, "leave-one-out mean %s %.4g over %d folds%s%s",
                 chosen.metric.c_str(), chosen.score.mean, chosen.score.folds,

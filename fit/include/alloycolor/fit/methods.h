@@ -34,6 +34,7 @@ struct FitSettings {
   // physics.
   bool fold = false;
   const AlloyModel* start = nullptr;  // refit: start from this model (same method)
+  int max_iterations = 0;  // physical: the solver's iterations, 0 for the fit's default
   ProgressCallback progress;          // may be empty
   // auto (required there): the colorimeter its leave-one-out scores colour with, at normal
   // incidence; data without colour (infrared) are scored by reflectance.

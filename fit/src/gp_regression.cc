@@ -12,22 +12,40 @@ double Kernel(double a, double b, double length) {
   return matern + kMeanPrior * (1 + a * b + a * a * b * b);
 }
 
+Eigen::MatrixXd KernelMatrix(const std::vector<double>& u, const GpHyper& hyper) {
+  const Eigen::Index n = static_cast<Eigen::Index>(u.size());
+  Eigen::MatrixXd k(n, n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    for (Eigen::Index j = 0; j < n; ++j) k(i, j) = Kernel(u[i], u[j], hyper.length);
+    // A jitter far below any data's precision keeps the interpolating kernel invertible.
+    k(i, i) += hyper.noise + 1e-10;
+  }
+  return k;
+}
+
+// K^-1, or an empty matrix where K cannot be factorised.
+Eigen::MatrixXd Inverse(const Eigen::MatrixXd& k) {
+  const Eigen::LDLT<Eigen::MatrixXd> ldlt(k);
+  if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().array() > 0).all()) return {};
+  Eigen::MatrixXd inverse = ldlt.solve(Eigen::MatrixXd::Identity(k.rows(), k.cols()));
+  if (!inverse.allFinite() || !(inverse.diagonal().array() > 0).all()) return {};
+  return inverse;
+}
+
+bool Interior(const std::vector<double>& u, size_t i) {
+  const auto [lo, hi] = std::minmax_element(u.begin(), u.end());
+  return u[i] != *lo && u[i] != *hi;
+}
+
 }  // namespace
 
 GpRegression::GpRegression(std::vector<double> u, const Eigen::MatrixXd& y, const GpHyper& hyper)
     : u_(std::move(u)), hyper_(hyper) {
-  const Eigen::Index n = static_cast<Eigen::Index>(u_.size());
-  Eigen::MatrixXd k(n, n);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    for (Eigen::Index j = 0; j < n; ++j) k(i, j) = Kernel(u_[i], u_[j], hyper_.length);
-    // A jitter far below any data's precision keeps the interpolating kernel invertible.
-    k(i, i) += hyper_.noise + 1e-10;
-  }
-  const Eigen::LDLT<Eigen::MatrixXd> ldlt(k);
-  if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().array() > 0).all()) return;
-  alpha_ = ldlt.solve(y);
-  inv_diag_ = ldlt.solve(Eigen::MatrixXd::Identity(n, n)).diagonal();
-  ok_ = alpha_.allFinite() && inv_diag_.allFinite() && (inv_diag_.array() > 0).all();
+  const Eigen::MatrixXd inverse = Inverse(KernelMatrix(u_, hyper_));
+  if (inverse.size() == 0) return;
+  alpha_ = inverse * y;
+  inv_diag_ = inverse.diagonal();
+  ok_ = alpha_.allFinite();
 }
 
 const std::vector<GpHyper>& GpRegression::Candidates() {
@@ -43,21 +61,30 @@ const std::vector<GpHyper>& GpRegression::Candidates() {
   return kCandidates;
 }
 
+// The criterion from G = Y Y^T alone: sum over series of (K^-1 Y)_i^2 is (K^-1 G K^-1)_ii,
+// so each candidate costs a few n x n products, whatever the number of series.
 GpRegression GpRegression::Chosen(const std::vector<double>& u, const Eigen::MatrixXd& y,
                                   double* criterion) {
+  const Eigen::MatrixXd gram = y * y.transpose();
   double best = HUGE_VAL;
   GpHyper chosen;
   for (const GpHyper& h : Candidates()) {
-    const GpRegression gp(u, y, h);
-    if (!gp.ok()) continue;
-    const double c = gp.LeaveOneOutCriterion();
-    if (c < best) {
+    const Eigen::MatrixXd inverse = Inverse(KernelMatrix(u, h));
+    if (inverse.size() == 0) continue;
+    const Eigen::MatrixXd m = inverse * gram * inverse;
+    double c = 0;
+    for (size_t i = 0; i < u.size(); ++i) {
+      const Eigen::Index k = static_cast<Eigen::Index>(i);
+      if (Interior(u, i)) c += m(k, k) / (inverse(k, k) * inverse(k, k));
+    }
+    if (std::isfinite(c) && c < best) {
       best = c;
       chosen = h;
     }
   }
-  if (criterion != nullptr) *criterion = best;
-  return GpRegression(u, y, chosen);
+  GpRegression gp(u, y, chosen);
+  if (criterion != nullptr) *criterion = gp.LeaveOneOutCriterion();
+  return gp;
 }
 
 Eigen::MatrixXd GpRegression::Predict(const std::vector<double>& uq) const {
@@ -74,12 +101,10 @@ Eigen::MatrixXd GpRegression::LeaveOneOutResiduals() const {
 
 double GpRegression::LeaveOneOutCriterion() const {
   if (!ok_) return HUGE_VAL;
-  const auto [lo, hi] = std::minmax_element(u_.begin(), u_.end());
   const Eigen::MatrixXd r = LeaveOneOutResiduals();
   double sum = 0;
   for (size_t i = 0; i < u_.size(); ++i) {
-    if (u_[i] == *lo || u_[i] == *hi) continue;
-    sum += r.row(static_cast<Eigen::Index>(i)).squaredNorm();
+    if (Interior(u_, i)) sum += r.row(static_cast<Eigen::Index>(i)).squaredNorm();
   }
   return std::isfinite(sum) ? sum : HUGE_VAL;
 }

@@ -74,7 +74,8 @@ std::vector<double> Knots(const std::vector<double>& compositions, int max_knots
 
 struct Solution {
   std::vector<double> knots;
-  std::vector<std::vector<double>> eps1, eps2;  // [node][knot]
+  std::vector<std::vector<double>> eps1, eps2;      // [node][knot]
+  std::vector<std::vector<double>> slope1, slope2;  // their PCHIP slopes (Finish)
   double final_cost = 0, data_sum_sq = 0;
   size_t data_residuals = 0;
   int iterations = 0;
@@ -133,10 +134,18 @@ std::vector<double> KnotsU(const GridData& g, const std::vector<double>& knots) 
 }
 
 // Passive: a knot's eps2 below 0 (only where strong smoothing pulls the curve below
-// near-zero data) is set to 0; PCHIP then keeps eps2 >= 0 between the knots too.
-void MakePassive(Solution* s) {
+// near-zero data) is set to 0; PCHIP then keeps eps2 >= 0 between the knots too. Then the
+// knots' PCHIP slopes, once for every evaluation of the solution.
+void Finish(Solution* s) {
   for (auto& node : s->eps2) {
     for (double& e : node) e = std::max(e, 0.0);
+  }
+  const size_t k = s->knots.size();
+  s->slope1.assign(s->eps1.size(), std::vector<double>(k));
+  s->slope2.assign(s->eps2.size(), std::vector<double>(k));
+  for (size_t j = 0; j < s->eps1.size(); ++j) {
+    PchipSlopes(s->knots.data(), s->eps1[j].data(), k, s->slope1[j].data());
+    PchipSlopes(s->knots.data(), s->eps2[j].data(), k, s->slope2[j].data());
   }
 }
 
@@ -192,7 +201,7 @@ Solution SolveAtCompositions(const GridData& g, const std::vector<char>& in, dou
     }
     cost += 0.5 * mu * (v.col(0).dot(rtr * v.col(0)) + v.col(1).dot(rtr * v.col(1)));
   }
-  MakePassive(&s);
+  Finish(&s);
   for (size_t i = 0; i < g.x.size(); ++i) {
     if (!in[i]) continue;
     for (size_t j = 0; j < nodes; ++j) {
@@ -267,7 +276,7 @@ Solution SolveCeres(const GridData& g, const std::vector<char>& in, double smoot
   std::vector<double> residuals;
   problem.Evaluate(eval, nullptr, &residuals, nullptr, nullptr);
   for (double r : residuals) s.data_sum_sq += r * r;
-  MakePassive(&s);
+  Finish(&s);
   return s;
 }
 
@@ -282,11 +291,8 @@ Solution Solve(const GridData& g, const std::vector<char>& in, double smoothing,
 // eps of the solution at composition x and node j.
 std::complex<double> EpsAt(const Solution& s, size_t j, double x) {
   const size_t k = s.knots.size();
-  double slopes[kSmoothMaxKnots];
-  PchipSlopes(s.knots.data(), s.eps1[j].data(), k, slopes);
-  const double e1 = HermiteAt(s.knots.data(), s.eps1[j].data(), slopes, k, x);
-  PchipSlopes(s.knots.data(), s.eps2[j].data(), k, slopes);
-  return {e1, HermiteAt(s.knots.data(), s.eps2[j].data(), slopes, k, x)};
+  return {HermiteAt(s.knots.data(), s.eps1[j].data(), s.slope1[j].data(), k, x),
+          HermiteAt(s.knots.data(), s.eps2[j].data(), s.slope2[j].data(), k, x)};
 }
 
 bool AllFinite(const Solution& s) {
@@ -348,7 +354,7 @@ Solution SolveGp(const GridData& g, const std::vector<char>& in) {
       s.eps2[j][c] = mean(c, static_cast<Eigen::Index>(nodes + j)) * scale[j];
     }
   }
-  MakePassive(&s);
+  Finish(&s);
   if (!AllFinite(s)) return s;
   for (size_t i : rows) {
     for (size_t j = 0; j < nodes; ++j) {

@@ -211,9 +211,9 @@ void RegisterFit(CLI::App& app) {
   cmd->add_option("--from", o->from,
                   "Refit: start from this earlier model and report what changed");
   cmd->add_option("--degree", o->degree,
-                  "physical: degree of every parameter's polynomial in composition (default: "
-                  "chosen by leave-one-composition-out among 1-3, the lowest within the folds' "
-                  "scatter of the best; 2 with under four compositions; lowered, with a "
+                  "physical: degree of every parameter's polynomial in composition (default: 2, "
+                  "as Nordheim's rule bows the damping, or 1 where leave-one-composition-out "
+                  "finds it more than 10 % and one standard error better; lowered, with a "
                   "warning, where the fit leaves physics)")
       ->check(NumberIn(0, 20, /*whole=*/true));
   cmd->add_option("--terms", o->terms,

@@ -264,7 +264,7 @@ def fit(dataset: Union[Dataset, str], method: str = "smooth", *, degree: Optiona
         progress: Optional[Callable[[str], None]] = None) -> Model:
     """Fits ``method`` (see :func:`methods`) to a data set, as ``alloycolor fit`` does.
 
-    degree: composition degree (physical; default chosen by leave-one-out among 1-3, lowered where the fit leaves physics);
+    degree: composition degree (physical; default 2, or 1 where leave-one-out finds it clearly better; lowered where the fit leaves physics);
     smoothing: roughness penalty across composition (smooth; default: chosen
     by leave-one-composition-out, 0 interpolates); terms: interband terms (physical);
     lambda_range_nm: (from, to, step) of the fit grid; covariance: compute the physical

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
+#include <mutex>
 #include <nlohmann/json.hpp>
 
 #include "alloycolor/core/error.h"
@@ -233,22 +235,35 @@ void EstimatePredictionError(std::vector<Fold>& fitted, const Dataset& dataset,
   model->set_prediction_error(std::move(error));
 }
 
+// `method` built on the data set, nothing more.
+std::unique_ptr<AlloyModel> Build(const std::string& method, const Dataset& dataset,
+                                  const FitSettings& settings) {
+  RequireMethod(method);
+  for (const MethodBuilder& b : Builders()) {
+    if (b.name == method) return b.build(dataset, settings);
+  }
+  throw Error("method '" + method + "' cannot be fitted to data");
+}
+
+// `model` (`method` built on the data set) given its leave-one-out folds in *folds and,
+// with settings.calibrate, its prediction error from them.
+void AddFolds(const std::string& method, const Dataset& dataset, const FitSettings& settings,
+              AlloyModel* model, std::vector<Fold>* folds) {
+  *folds = FitFolds(method, dataset, settings, *model);
+  if (settings.calibrate) EstimatePredictionError(*folds, dataset, settings, model);
+}
+
 // `method` built on the data set; with `folds` (or settings.calibrate) the leave-one-out
 // folds too, and with settings.calibrate its prediction error from them.
 std::unique_ptr<AlloyModel> BuildWithFolds(const std::string& method, const Dataset& dataset,
                                            const FitSettings& settings,
                                            std::vector<Fold>* folds) {
-  RequireMethod(method);
-  for (const MethodBuilder& b : Builders()) {
-    if (b.name != method) continue;
-    std::unique_ptr<AlloyModel> model = b.build(dataset, settings);
-    std::vector<Fold> own;
-    if (folds == nullptr) folds = &own;
-    if (settings.calibrate || folds != &own) *folds = FitFolds(method, dataset, settings, *model);
-    if (settings.calibrate) EstimatePredictionError(*folds, dataset, settings, model.get());
-    return model;
+  std::unique_ptr<AlloyModel> model = Build(method, dataset, settings);
+  std::vector<Fold> own;
+  if (folds != nullptr || settings.calibrate) {
+    AddFolds(method, dataset, settings, model.get(), folds != nullptr ? folds : &own);
   }
-  throw Error("method '" + method + "' cannot be fitted to data");
+  return model;
 }
 
 // auto's score of a method: its folds' held-out samples scored as `validate` scores them
@@ -316,19 +331,41 @@ struct Scored {
   std::string metric;
 };
 
-Scored BuildScored(const std::string& method, const Dataset& dataset,
-                   const FitSettings& settings) {
+// `model` (`method` built on the data set) with its folds, scored on them.
+Scored ScoreWithFolds(const std::string& method, const Dataset& dataset,
+                      const FitSettings& settings, std::unique_ptr<AlloyModel> model) {
   Scored r;
   r.score.method = method;
   try {
     std::vector<Fold> folds;
-    r.model = BuildWithFolds(method, dataset, settings, &folds);
+    AddFolds(method, dataset, settings, model.get(), &folds);
+    r.model = std::move(model);
     r.score = ScoreFolds(method, dataset, folds, *settings.colorimeter, &r.metric, &r.values);
   } catch (const Error& e) {
     r.score.error = e.what();
   }
   if (!r.score.error.empty()) r.model.reset();
   return r;
+}
+
+Scored BuildScored(const std::string& method, const Dataset& dataset,
+                   const FitSettings& settings) {
+  std::unique_ptr<AlloyModel> model;
+  try {
+    model = Build(method, dataset, settings);
+  } catch (const Error& e) {
+    Scored r;
+    r.score.method = method;
+    r.score.error = e.what();
+    return r;
+  }
+  return ScoreWithFolds(method, dataset, settings, std::move(model));
+}
+
+double Rms(const std::vector<double>& values) {
+  double sum = 0;
+  for (double v : values) sum += v * v;
+  return std::sqrt(sum / std::max<size_t>(values.size(), 1));
 }
 
 // The one-standard-error choice among candidates listed simplest first: the first whose
@@ -379,6 +416,82 @@ Choice ChooseSimplest(const std::vector<Scored>& candidates, bool squared = fals
   return c;
 }
 
+// RMS of a model's error on the samples it was fitted to, over those its folds hold out
+// (ErrorFolds), in the metric ScoreFolds uses: CIEDE2000 at normal incidence, or for data
+// without colour the reflectance RMS over the sample's wavelengths inside the model's range.
+double OwnErrorRms(const AlloyModel& model, const Dataset& dataset,
+                   const color::Colorimeter& cm) {
+  const bool colour = CoversVisible(model.lambda_min_nm(), model.lambda_max_nm());
+  const std::vector<double> held = ErrorFolds(dataset);
+  double sum = 0;
+  int count = 0;
+  for (const Sample& s : dataset.samples) {
+    if (std::find(held.begin(), held.end(), s.x_atomic) == held.end()) continue;
+    ++count;
+    double e = 0;
+    if (colour) {
+      const color::Lab a = color::LabFromXYZ(
+          color::MaterialXYZ(cm, color::IndexOnGrid(cm, model, s.x_atomic), 0.0), cm.White());
+      const color::Lab b = color::LabFromXYZ(
+          color::MaterialXYZ(cm, color::IndexOnGrid(cm, s.nk), 0.0), cm.White());
+      e = color::DeltaE00(a, b);
+    } else {
+      std::vector<double> grid;
+      for (double l : s.nk.lambda_nm) {
+        if (l >= model.lambda_min_nm() && l <= model.lambda_max_nm()) grid.push_back(l);
+      }
+      if (grid.empty()) continue;
+      std::vector<std::complex<double>> measured;
+      for (double l : grid) measured.push_back(NkAt(s.nk, l));
+      const auto r_model = color::ReflectanceSpectrum(model.Index(s.x_atomic, grid), 0.0);
+      const auto r_data = color::ReflectanceSpectrum(measured, 0.0);
+      for (size_t j = 0; j < grid.size(); ++j) e += std::pow(r_model[j] - r_data[j], 2);
+      e = std::sqrt(e / grid.size());
+    }
+    sum += e * e;
+  }
+  return std::sqrt(sum / std::max(count, 1));
+}
+
+// A physical candidate scored on its folds unless its own error on the samples (converged:
+// an unfinished fit is continued first) already exceeds what it would have to beat,
+// `preferred`'s leave-one-out RMS over kAutoTolerance: a held-out sample is no nearer than
+// the fitted ones, so its folds could not make it win (Au-Ag at degree 1: own error 1.0
+// against 4e-5), and they are not fitted.
+Scored BuildUnlessOutdone(const Dataset& dataset, const FitSettings& settings,
+                          const Scored& preferred) {
+  if (!preferred.score.error.empty()) return BuildScored("physical", dataset, settings);
+  const double must_beat = Rms(preferred.values) / kAutoTolerance;
+  Scored r;
+  r.score.method = "physical";
+  std::unique_ptr<AlloyModel> model;
+  double own = 0;
+  try {
+    model = Build("physical", dataset, settings);
+    own = OwnErrorRms(*model, dataset, *settings.colorimeter);
+    if (own >= must_beat && !model->fit_summary().converged) {
+      FitSettings full = settings;
+      full.start = model.get();
+      full.max_iterations = 0;
+      model = Build("physical", dataset, full);
+      own = OwnErrorRms(*model, dataset, *settings.colorimeter);
+    }
+  } catch (const Error& e) {
+    r.score.error = e.what();
+    return r;
+  }
+  if (own >= must_beat) {
+    char why[160];
+    std::snprintf(why, sizeof why,
+                  "its own RMS error on the samples, %.4g, already exceeds what it would have "
+                  "to beat, %.4g",
+                  own, must_beat);
+    r.score.error = why;
+    return r;
+  }
+  return ScoreWithFolds("physical", dataset, settings, std::move(model));
+}
+
 // The physical fit's composition degree chosen by the data: degrees 2 and 1 (2 needs four
 // compositions, so that every fold fits it too), each built with its folds and scored on
 // them by the RMS of the folds' errors. Degree 2 (kPreferredDegree) stays unless degree 1
@@ -411,7 +524,8 @@ Scored BuildPhysicalChoosingDegree(const Dataset& dataset, const FitSettings& se
     at.progress = {};
     at.covariance = false;
     at.max_iterations = kCandidateIterations;
-    Scored r = BuildScored("physical", dataset, at);
+    Scored r = candidates.empty() ? BuildScored("physical", dataset, at)
+                                  : BuildUnlessOutdone(dataset, at, candidates.front());
     if (r.model && r.model->fit_summary().degree != degree) {
       r.score.error = "lowered to degree " + std::to_string(r.model->fit_summary().degree) +
                       " (it left physics or did not converge)";
@@ -439,14 +553,9 @@ Scored BuildPhysicalChoosingDegree(const Dataset& dataset, const FitSettings& se
     }
     chosen.model = std::move(finished);
   }
-  const auto rms = [](const std::vector<double>& values) {
-    double sum = 0;
-    for (double v : values) sum += v * v;
-    return std::sqrt(sum / std::max<size_t>(values.size(), 1));
-  };
   char reason[200];
   std::snprintf(reason, sizeof reason, "leave-one-out RMS %s %.4g over %d folds%s%s",
-                chosen.metric.c_str(), rms(chosen.values), chosen.score.folds,
+                chosen.metric.c_str(), Rms(chosen.values), chosen.score.folds,
                 c.rule.empty() ? ", the lowest" : ", Nordheim's degree 2 within ",
                 c.rule.c_str());
   FitSummary summary = chosen.model->fit_summary();
@@ -456,7 +565,7 @@ Scored BuildPhysicalChoosingDegree(const Dataset& dataset, const FitSettings& se
     const MethodScore& s = r.score;
     nlohmann::json row = {{"degree", degrees[i]}};
     if (s.error.empty()) {
-      row["rms"] = rms(r.values);
+      row["rms"] = Rms(r.values);
       row["mean"] = s.mean;
       row["max"] = s.max;
       row["folds"] = s.folds;
@@ -470,6 +579,61 @@ Scored BuildPhysicalChoosingDegree(const Dataset& dataset, const FitSettings& se
   chosen.model->set_fit_summary(std::move(summary));
   Report(settings.progress, "physical: degree " + std::to_string(degree) + ": " + reason);
   return chosen;
+}
+
+// BuildPhysicalChoosingDegree, remembered for the process: `validate` builds physical and
+// auto's physical candidate on the same training samples, and the choice is
+// deterministic, so the remembered result (a copy through the model file) is what a new
+// one would give. Keyed by the samples (composition, wavelengths, n, k) and every setting
+// the fit reads; a refit (settings.start) is not remembered.
+Scored RememberedDegreeChoice(const Dataset& dataset, const FitSettings& settings) {
+  if (settings.start != nullptr) return BuildPhysicalChoosingDegree(dataset, settings);
+  std::string key = settings.terms;
+  const auto add = [&key](const void* bytes, size_t size) {
+    key.append(static_cast<const char*>(bytes), size);
+  };
+  const double numbers[] = {settings.lambda_from_nm, settings.lambda_to_nm,
+                            settings.lambda_step_nm};
+  add(numbers, sizeof numbers);
+  const int flags[] = {settings.covariance, settings.calibrate, settings.max_iterations};
+  add(flags, sizeof flags);
+  add(&settings.colorimeter, sizeof settings.colorimeter);
+  for (const Sample& s : dataset.samples) {
+    add(&s.x_atomic, sizeof s.x_atomic);
+    for (const auto* v : {&s.nk.lambda_nm, &s.nk.n, &s.nk.k}) {
+      const size_t size = v->size();
+      add(&size, sizeof size);
+      add(v->data(), size * sizeof(double));
+    }
+  }
+  struct Remembered {
+    nlohmann::json model;
+    MethodScore score;
+    std::vector<double> values;
+    std::string metric;
+  };
+  static std::mutex mutex;
+  static std::map<std::string, Remembered> remembered;
+  const auto copy = [](const Remembered& m) {
+    Scored r;
+    r.model = RequireMethod("physical").read(m.model, "the remembered physical fit");
+    r.score = m.score;
+    r.values = m.values;
+    r.metric = m.metric;
+    return r;
+  };
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    const auto it = remembered.find(key);
+    if (it != remembered.end()) return copy(it->second);
+  }
+  Scored r = BuildPhysicalChoosingDegree(dataset, settings);
+  if (!r.model) return r;
+  Remembered m{r.model->ToJson(), r.score, r.values, r.metric};
+  const std::lock_guard<std::mutex> lock(mutex);
+  if (remembered.size() >= 32) remembered.clear();  // a bound on what is kept
+  remembered.emplace(std::move(key), std::move(m));
+  return r;
 }
 
 bool ChoosesDegree(const std::string& method, const FitSettings& settings) {
@@ -496,7 +660,7 @@ std::unique_ptr<AlloyModel> BuildModel(const std::string& method, const Dataset&
                                        const FitSettings& settings) {
   if (method == kAutoMethod) return BuildAuto(dataset, settings);
   if (ChoosesDegree(method, settings)) {
-    Scored r = BuildPhysicalChoosingDegree(dataset, settings);
+    Scored r = RememberedDegreeChoice(dataset, settings);
     if (!r.model) throw Error(r.score.error);
     return std::move(r.model);
   }
@@ -532,7 +696,7 @@ std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings&
     Report(settings.progress, "auto: scoring " + method + " by leave-one-out over " +
                                   std::to_string(held_out) + " interior compositions");
     candidates.push_back(ChoosesDegree(method, inner)
-                             ? BuildPhysicalChoosingDegree(dataset, inner)
+                             ? RememberedDegreeChoice(dataset, inner)
                              : BuildScored(method, dataset, inner));
     selection.scores.push_back(candidates.back().score);
     if (selection.metric.empty()) selection.metric = candidates.back().metric;

@@ -210,9 +210,11 @@ void Run(const ValidateOptions& o) {
   }
   validate::ValidationOptions options;
   const color::Colorimeter d65 = LoadColorimeter("D65", 2);
-  options.build = [&d65](const std::string& method, const Dataset& training) {
+  const std::shared_ptr<fit::FitMemo> memo = fit::MakeFitMemo();  // shared by the methods
+  options.build = [&d65, &memo](const std::string& method, const Dataset& training) {
     fit::FitSettings settings;
     settings.colorimeter = &d65;
+    settings.memo = memo;
     return fit::BuildModel(method, training, settings);
   };
   options.methods = ParseMethods(o.methods);

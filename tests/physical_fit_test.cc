@@ -277,11 +277,15 @@ TEST(PhysicalFit, TheDataChooseTheCompositionDegree) {
     fit::FitSettings settings;
     settings.terms = "cp,cp";
     settings.colorimeter = &colorimeter;
+    settings.memo = fit::MakeFitMemo();
     const auto model = fit::BuildModel("physical", data, settings);
-    // Built again (the process remembers the choice, as validate's physical and auto share
-    // it): the same model file.
+    // Built again through the memo (as validate's physical and auto share the choice) and
+    // afresh: the same model file.
     EXPECT_EQ(fit::BuildModel("physical", data, settings)->ToJson().dump(),
               model->ToJson().dump());
+    fit::FitSettings fresh = settings;
+    fresh.memo = nullptr;
+    EXPECT_EQ(fit::BuildModel("physical", data, fresh)->ToJson().dump(), model->ToJson().dump());
     const nlohmann::json& details = model->fit_summary().details;
     EXPECT_EQ(model->fit_summary().degree, bowing ? 2 : 1) << details.dump();
     ASSERT_EQ(details["degree_selection"].size(), 2u);  // degrees 2 and 1

@@ -21,6 +21,20 @@
 #include "alloycolor/validate/validation.h"
 
 namespace alloycolor::fit {
+
+struct FitMemo {
+  struct Remembered {
+    nlohmann::json model;
+    MethodScore score;
+    std::vector<double> values;
+    std::string metric;
+  };
+  std::mutex mutex;
+  std::map<std::string, Remembered> degree_choices;
+};
+
+std::shared_ptr<FitMemo> MakeFitMemo() { return std::make_shared<FitMemo>(); }
+
 namespace {
 
 template <SampleModel::Kind kind>
@@ -581,13 +595,14 @@ Scored BuildPhysicalChoosingDegree(const Dataset& dataset, const FitSettings& se
   return chosen;
 }
 
-// BuildPhysicalChoosingDegree, remembered for the process: `validate` builds physical and
-// auto's physical candidate on the same training samples, and the choice is
-// deterministic, so the remembered result (a copy through the model file) is what a new
-// one would give. Keyed by the samples (composition, wavelengths, n, k) and every setting
-// the fit reads; a refit (settings.start) is not remembered.
+// BuildPhysicalChoosingDegree through settings.memo: the choice is deterministic, so the
+// remembered result (a copy through the model file) is what a new one would give. Keyed by
+// the samples (composition, wavelengths, n, k) and every setting the fit reads; a refit
+// (settings.start) is not remembered.
 Scored RememberedDegreeChoice(const Dataset& dataset, const FitSettings& settings) {
-  if (settings.start != nullptr) return BuildPhysicalChoosingDegree(dataset, settings);
+  if (!settings.memo || settings.start != nullptr) {
+    return BuildPhysicalChoosingDegree(dataset, settings);
+  }
   std::string key = settings.terms;
   const auto add = [&key](const void* bytes, size_t size) {
     key.append(static_cast<const char*>(bytes), size);
@@ -606,15 +621,8 @@ Scored RememberedDegreeChoice(const Dataset& dataset, const FitSettings& setting
       add(v->data(), size * sizeof(double));
     }
   }
-  struct Remembered {
-    nlohmann::json model;
-    MethodScore score;
-    std::vector<double> values;
-    std::string metric;
-  };
-  static std::mutex mutex;
-  static std::map<std::string, Remembered> remembered;
-  const auto copy = [](const Remembered& m) {
+  FitMemo& memo = *settings.memo;
+  const auto copy = [](const FitMemo::Remembered& m) {
     Scored r;
     r.model = RequireMethod("physical").read(m.model, "the remembered physical fit");
     r.score = m.score;
@@ -623,16 +631,15 @@ Scored RememberedDegreeChoice(const Dataset& dataset, const FitSettings& setting
     return r;
   };
   {
-    const std::lock_guard<std::mutex> lock(mutex);
-    const auto it = remembered.find(key);
-    if (it != remembered.end()) return copy(it->second);
+    const std::lock_guard<std::mutex> lock(memo.mutex);
+    const auto it = memo.degree_choices.find(key);
+    if (it != memo.degree_choices.end()) return copy(it->second);
   }
   Scored r = BuildPhysicalChoosingDegree(dataset, settings);
   if (!r.model) return r;
-  Remembered m{r.model->ToJson(), r.score, r.values, r.metric};
-  const std::lock_guard<std::mutex> lock(mutex);
-  if (remembered.size() >= 32) remembered.clear();  // a bound on what is kept
-  remembered.emplace(std::move(key), std::move(m));
+  FitMemo::Remembered m{r.model->ToJson(), r.score, r.values, r.metric};
+  const std::lock_guard<std::mutex> lock(memo.mutex);
+  memo.degree_choices.emplace(std::move(key), std::move(m));
   return r;
 }
 

@@ -433,9 +433,11 @@ PYBIND11_MODULE(_alloycolor, m) {
           validate::ValidationOptions options;
           // As `alloycolor validate`: fits score colour under D65, 2 degrees.
           const color::Colorimeter& d65 = GetColorimeter("D65", 2);
-          options.build = [&d65](const std::string& method, const Dataset& training) {
+          const std::shared_ptr<fit::FitMemo> memo = fit::MakeFitMemo();  // shared by the methods
+          options.build = [&d65, &memo](const std::string& method, const Dataset& training) {
             fit::FitSettings settings;
             settings.colorimeter = &d65;
+            settings.memo = memo;
             return fit::BuildModel(method, training, settings);
           };
           options.methods = methods;

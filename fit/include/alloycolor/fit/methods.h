@@ -19,6 +19,12 @@
 
 namespace alloycolor::fit {
 
+// What fits within one job may reuse (`validate` builds physical and auto's physical
+// candidate on the same training samples): the physical degree choice, keyed by the
+// samples and settings. Thread-safe; made by MakeFitMemo, shared through FitSettings::memo.
+struct FitMemo;
+std::shared_ptr<FitMemo> MakeFitMemo();
+
 struct FitSettings {
   int degree = -1;      // physical: composition degree; < 0: the method's default
   double smoothing = -1;  // smooth: roughness penalty across composition; -1: cross-validated
@@ -35,6 +41,7 @@ struct FitSettings {
   bool fold = false;
   const AlloyModel* start = nullptr;  // refit: start from this model (same method)
   int max_iterations = 0;  // physical: the solver's iterations, 0 for the fit's default
+  std::shared_ptr<FitMemo> memo;  // may be null: nothing reused
   ProgressCallback progress;          // may be empty
   // auto (required there): the colorimeter its leave-one-out scores colour with, at normal
   // incidence; data without colour (infrared) are scored by reflectance.

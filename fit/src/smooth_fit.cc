@@ -5,6 +5,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <sstream>
 
 #include "alloycolor/core/error.h"
@@ -403,6 +404,29 @@ std::vector<std::vector<double>> Folds(const std::vector<double>& compositions) 
   return folds;
 }
 
+// The left-out samples' errors summed over the folds, each fold's solution made by
+// `solve` from which samples take part; false where one could not be made (not converged).
+bool LeftOutErrors(const GridData& g, const std::vector<std::vector<double>>& folds,
+                   const std::function<Solution(const std::vector<char>&)>& solve,
+                   SampleError* total) {
+  for (const auto& fold : folds) {
+    std::vector<char> in(g.x.size(), 1);
+    for (size_t i = 0; i < g.x.size(); ++i) {
+      if (std::count(fold.begin(), fold.end(), g.x[i])) in[i] = 0;
+    }
+    const Solution s = solve(in);
+    if (!s.converged) return false;
+    for (size_t i = 0; i < g.x.size(); ++i) {
+      if (in[i]) continue;
+      const SampleError e = ErrorOf(g, i, s);
+      total->eps_sq += e.eps_sq;
+      total->reflectance_sq += e.reflectance_sq;
+      total->count += e.count;
+    }
+  }
+  return true;
+}
+
 }  // namespace
 
 constexpr double kGpMargin = 1.1;
@@ -439,20 +463,11 @@ SmoothFitResult FitSmooth(const Dataset& dataset, const SmoothFitOptions& option
       double best = 1e300;
       for (double candidate : SmoothingCandidates()) {
         SampleError total;
-        for (const auto& fold : folds) {
-          std::vector<char> in = all;
-          for (size_t i = 0; i < g.x.size(); ++i) {
-            if (std::count(fold.begin(), fold.end(), g.x[i])) in[i] = 0;
-          }
-          const Solution s = Solve(g, in, candidate, options);
-          for (size_t i = 0; i < g.x.size(); ++i) {
-            if (in[i]) continue;
-            const SampleError e = ErrorOf(g, i, s);
-            total.eps_sq += e.eps_sq;
-            total.reflectance_sq += e.reflectance_sq;
-            total.count += e.count;
-          }
-        }
+        LeftOutErrors(g, folds, [&](const std::vector<char>& in) {
+          Solution s = Solve(g, in, candidate, options);
+          s.converged = true;  // the Ceres form's best point counts either way
+          return s;
+        }, &total);
         const double rms = std::sqrt(total.eps_sq / total.count);
         const double rms_r = std::sqrt(total.reflectance_sq / total.count);
         result.cross_validation.push_back({candidate, rms, rms_r});
@@ -472,27 +487,10 @@ SmoothFitResult FitSmooth(const Dataset& dataset, const SmoothFitOptions& option
   // few folds leave-one-out flatters the more flexible one).
   bool use_gp = false;
   if (options.smoothing < 0 && chosen_by != "user" && Folds(compositions).size() >= 2) {
-    const auto folds = Folds(compositions);
     SampleError total;
-    bool scored = true;
-    for (const auto& fold : folds) {
-      std::vector<char> in = all;
-      for (size_t i = 0; i < g.x.size(); ++i) {
-        if (std::count(fold.begin(), fold.end(), g.x[i])) in[i] = 0;
-      }
-      const Solution gs = SolveGp(g, in);
-      if (!gs.converged) {
-        scored = false;
-        break;
-      }
-      for (size_t i = 0; i < g.x.size(); ++i) {
-        if (in[i]) continue;
-        const SampleError e = ErrorOf(g, i, gs);
-        total.eps_sq += e.eps_sq;
-        total.reflectance_sq += e.reflectance_sq;
-        total.count += e.count;
-      }
-    }
+    const bool scored = LeftOutErrors(
+        g, Folds(compositions), [&](const std::vector<char>& in) { return SolveGp(g, in); },
+        &total);
     if (scored && total.count > 0) {
       result.gp_rms = std::sqrt(total.eps_sq / total.count);
       result.gp_rms_reflectance = std::sqrt(total.reflectance_sq / total.count);

@@ -382,7 +382,8 @@ double Rms(const std::vector<double>& values) {
   return std::sqrt(sum / std::max<size_t>(values.size(), 1));
 }
 
-// The one-standard-error choice among candidates listed simplest first: the first whose
+// The one-standard-error choice among candidates listed in order of preference (auto:
+// simplest first; the physical degree: Nordheim's first): the first whose
 // mean lies within kAutoTolerance of the lowest, or above it by no more than the standard
 // error of their fold-by-fold differences (paired folds, from three folds up):
 // leave-one-out with few samples flatters the flexible candidates, and a lead within the
@@ -512,10 +513,10 @@ Scored BuildUnlessOutdone(const Dataset& dataset, const FitSettings& settings,
 // is lower by more than 10 % and by more than one standard error of the folds' paired
 // differences (ChooseSimplest with 2 first, squared: a degree that misses one fold badly
 // is not saved by the others): leave-one-out over a few folds is too noisy to overrule
-// the physics on less. Degree 3 is not offered: on Nb-Sn the folds chose it where
-// a held-out end sample left a wide gap, and it bent across that gap (reflectance RMS
-// 0.42 against 0.13); --degree asks for it. Fewer than four compositions cannot tell degrees apart: the
-// default degree then. The table and the reason go into the fit summary.
+// the physics on less. Degree 3 is not offered: on Nb-Sn the folds chose it where a
+// held-out end sample left a wide gap, and it bent across that gap (reflectance RMS 0.42
+// against 0.13); --degree asks for it. Fewer than four compositions cannot tell degrees
+// apart: the default degree then. The table and the reason go into the fit summary.
 Scored BuildPhysicalChoosingDegree(const Dataset& dataset, const FitSettings& settings) {
   const int compositions = static_cast<int>(DistinctCompositions(dataset).size());
   const int top = std::min(kPreferredDegree, compositions - 2);
@@ -559,9 +560,8 @@ Scored BuildPhysicalChoosingDegree(const Dataset& dataset, const FitSettings& se
     // error carries over (the folds started from the candidate).
     FitSettings full = settings;
     full.degree = degree;
-    full.calibrate = false;
     full.start = chosen.model.get();
-    std::unique_ptr<AlloyModel> finished = BuildWithFolds("physical", dataset, full, nullptr);
+    std::unique_ptr<AlloyModel> finished = Build("physical", dataset, full);
     if (chosen.model->prediction_error().present()) {
       finished->set_prediction_error(chosen.model->prediction_error());
     }

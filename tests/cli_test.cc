@@ -202,6 +202,10 @@ TEST_F(BadInput, ModelFilesAndRefit) {
   doc["uncertainty"]["calibration"] = -1;
   ExpectCleanError({"predict", "--model", File("calibration.json", doc.dump()), "--x", "0.5"},
                    {"calibration.json", "uncertainty.calibration"});
+  doc = nlohmann::json::parse(text);
+  doc["uncertainty"]["end_factor"] = 0.5;
+  ExpectCleanError({"predict", "--model", File("end.json", doc.dump()), "--x", "0.5"},
+                   {"end.json", "uncertainty.end_factor"});
   // Refit: reports the added samples, keeps the old model.
   r = RunProgram({"fit", "--data", "Au-Ag", "--from", model, "--out", dir_ + "/new.json"});
   ASSERT_EQ(r.status, 0) << r.err;

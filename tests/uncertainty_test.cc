@@ -38,6 +38,13 @@ TEST(PredictionError, BumpAndScaleByHand) {
   EXPECT_DOUBLE_EQ(e.Bump(0.625), 1.5);
   // x = 0.1 in [0, 0.25]: t = 0.4, 4 * 0.4 * 0.6 * 0.25 / 0.5.
   EXPECT_NEAR(e.Bump(0.1), 0.48, 1e-15);
+  // Four compositions, an end factor of 2: the end intervals' B doubles, the interior's not.
+  PredictionError four = e;
+  four.compositions = {0.0, 0.25, 0.5, 1.0};
+  four.end_factor = 2;
+  EXPECT_NEAR(four.Bump(0.1), 2 * 0.48, 1e-15);
+  EXPECT_DOUBLE_EQ(four.Bump(0.375), 4 * 0.5 * 0.5 * 0.25 / 0.5);
+  EXPECT_DOUBLE_EQ(four.Bump(0.75), 2 * 4 * 0.5 * 0.5 * 0.5 / 0.5);
   EXPECT_DOUBLE_EQ(e.ScaleAt(500), 0.03);
   EXPECT_DOUBLE_EQ(e.ScaleAt(300), 0.02);
   EXPECT_DOUBLE_EQ(e.ScaleAt(900), 0.01);
@@ -95,9 +102,15 @@ TEST(PredictionError, FitsOfThreeCompositionsOrMoreCarryItAndTheFileKeepsIt) {
   // Zero at a training composition, positive between.
   EXPECT_EQ(color::DeltaE00Sigma(cm, *model, 0.3, 0.0), 0.0);
   EXPECT_GT(color::DeltaE00Sigma(cm, *model, 0.35, 0.0), 0.0);
+  EXPECT_GE(e.end_factor, 1.0);
   const auto back = ModelFromJson(model->ToJson(), "mem");
   EXPECT_EQ(back->prediction_error().scale, e.scale);
   EXPECT_EQ(back->prediction_error().calibration, e.calibration);
+  EXPECT_EQ(back->prediction_error().end_factor, e.end_factor);
+  // A file from before the end factor: every interval alike.
+  nlohmann::json older = model->ToJson();
+  older["uncertainty"].erase("end_factor");
+  EXPECT_EQ(ModelFromJson(older, "older")->prediction_error().end_factor, 1.0);
   settings.calibrate = false;
   EXPECT_FALSE(fit::BuildModel("eps-pchip", all, settings)->HasUncertainty());
 }

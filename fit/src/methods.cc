@@ -199,25 +199,67 @@ void EstimatePredictionError(std::vector<Fold>& fitted, const Dataset& dataset,
   }
   if (done.empty()) return;
   const double reference_gap = gap_sum / done.size();
-  // scale[j]^2: mean over folds of (relative error / B)^2, B with the reference gap.
-  std::vector<double> sum_sq(grid.size(), 0.0);
-  int count = 0;
+  // Each fold's relative eps errors per wavelength, over its B (reference gap, end factor 1).
+  struct FoldErrors {
+    std::vector<double> over_bump;  // per held-out sample and wavelength, flattened
+    bool end = false;               // held out in an end interval of its training samples
+  };
+  std::vector<FoldErrors> errors;
   for (const Fold* fp : done) {
     const Fold& f = *fp;
     const double bump = f.bump / reference_gap;
     if (!(bump > 0)) continue;
+    FoldErrors fe;
+    const size_t n = f.compositions.size();
+    const size_t hi = std::upper_bound(f.compositions.begin(), f.compositions.end(), f.x) -
+                      f.compositions.begin();
+    fe.end = n > 2 && (hi == 1 || hi == n - 1);
     const auto predicted = f.model->Permittivity(f.held.front()->x_atomic, grid);
     for (const Sample* s : f.held) {
       for (size_t j = 0; j < grid.size(); ++j) {
         const std::complex<double> nk = NkAt(s->nk, grid[j]), e = nk * nk;
         const double r = std::abs(predicted[j] - e) / std::abs(e);
-        if (std::isfinite(r)) sum_sq[j] += std::pow(r / bump, 2);
+        fe.over_bump.push_back(std::isfinite(r) ? r / bump : 0.0);
       }
-      ++count;
     }
+    errors.push_back(std::move(fe));
+  }
+  if (errors.empty()) return;
+  // The end factor: how much larger the end folds' errors are than the interior ones'
+  // (geometric means of their RMS), where the folds have both; at least 1.
+  double end_factor = 1;
+  {
+    double log_sum[2] = {0, 0};
+    int folds_of[2] = {0, 0};
+    for (const FoldErrors& fe : errors) {
+      double sq = 0;
+      for (double v : fe.over_bump) sq += v * v;
+      const double rms = std::sqrt(sq / std::max<size_t>(fe.over_bump.size(), 1));
+      if (!(rms > 0)) continue;
+      log_sum[fe.end] += std::log(rms);
+      ++folds_of[fe.end];
+    }
+    if (folds_of[0] > 0 && folds_of[1] > 0) {
+      // Shrunk towards 1 as few folds say little: weight k / (k + 2), k the smaller group.
+      const double k = std::min(folds_of[0], folds_of[1]);
+      end_factor = std::clamp(
+          std::exp(k / (k + 2) * (log_sum[1] / folds_of[1] - log_sum[0] / folds_of[0])), 1.0,
+          10.0);
+    }
+  }
+  // scale[j]^2: mean over the held-out samples of (relative error / B)^2.
+  std::vector<double> sum_sq(grid.size(), 0.0);
+  int count = 0;
+  for (const FoldErrors& fe : errors) {
+    const double factor = fe.end ? end_factor : 1.0;
+    for (size_t k = 0; k < fe.over_bump.size(); ++k) {
+      sum_sq[k % grid.size()] += std::pow(fe.over_bump[k] / factor, 2);
+    }
+    count += static_cast<int>(fe.over_bump.size() / grid.size());
   }
   if (count == 0) return;
   PredictionError error;
+  error.end_factor = end_factor;
   error.lambda_nm = grid;
   for (double v : sum_sq) error.scale.push_back(std::min(std::sqrt(v / count), 100.0));
   error.compositions = DistinctCompositions(dataset);

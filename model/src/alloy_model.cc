@@ -138,7 +138,8 @@ double PredictionError::Bump(double x) const {
   hi = std::clamp<size_t>(hi, 1, n - 1);
   const double h = compositions[hi] - compositions[hi - 1];
   const double t = (x - compositions[hi - 1]) / h;
-  return 4 * std::abs(t * (1 - t)) * h / reference_gap;
+  const bool end = n > 2 && (hi == 1 || hi == n - 1);
+  return (end ? end_factor : 1.0) * 4 * std::abs(t * (1 - t)) * h / reference_gap;
 }
 
 double PredictionError::ScaleAt(double l) const {
@@ -170,6 +171,9 @@ void AlloyModel::set_prediction_error(PredictionError e) {
   }
   if (!(e.reference_gap > 0 && e.reference_gap <= 1e6)) {
     throw Error(where + "reference_gap: must be positive");
+  }
+  if (!(e.end_factor >= 1 && e.end_factor <= 100)) {
+    throw Error(where + "end_factor: must lie in 1..100");
   }
   if (!(e.calibration > 0 && e.calibration <= 1e3)) {
     throw Error(where + "calibration: must lie in (0, 1000]");
@@ -354,6 +358,7 @@ nlohmann::json AlloyModel::ToJson() const {
         {"scale", e.scale},
         {"compositions", e.compositions},
         {"reference_gap", e.reference_gap},
+        {"end_factor", e.end_factor},
         {"calibration", e.calibration}};
   }
   doc["warnings"] = warnings_;
@@ -441,6 +446,10 @@ void AlloyModel::ReadCommon(const nlohmann::json& doc) {
     e.compositions = numbers("compositions");
     e.reference_gap = Number(Field(u, "reference_gap", "uncertainty"), "uncertainty.reference_gap");
     e.calibration = Number(Field(u, "calibration", "uncertainty"), "uncertainty.calibration");
+    // Files before the end factor: every interval alike.
+    if (u.contains("end_factor")) {
+      e.end_factor = Number(u["end_factor"], "uncertainty.end_factor");
+    }
     const double folds = Number(Field(u, "folds", "uncertainty"), "uncertainty.folds");
     if (folds != std::floor(folds) || folds < 1 || folds > 1e6) {
       throw Error("uncertainty.folds: expected a whole number >= 1");

@@ -67,7 +67,7 @@ struct FitSummary {
 // How far a model's predictions between its training compositions are off, estimated
 // by leave-one-composition-out when it is fitted (fit/methods.h): at wavelength node j
 // the relative eps error at composition x is scale[j] * B(x), with
-//   B(x) = 4 t (1 - t) h / reference_gap,
+//   B(x) = 4 t (1 - t) h / reference_gap   (times end_factor in an end interval),
 // t the position of x in its interval of width h between neighbouring training
 // compositions (B = 0 at each of them; beyond the ends |t(1 - t)|, growing). Linear in
 // the gap: between the h^2 of interpolating a smooth curve and the h^0 of sample-to-sample
@@ -82,6 +82,10 @@ struct PredictionError {
   std::vector<double> lambda_nm, scale;  // wavelength nodes, increasing
   std::vector<double> compositions;      // training compositions, increasing
   double reference_gap = 1;
+  // B in an end interval (between the first two or the last two compositions, three or
+  // more of them) is this many times an interior interval's: a curve there is pinned on
+  // one side only. From the folds (1 where they cannot tell; docs/model-format.md).
+  double end_factor = 1;
   double calibration = 1;
   int folds = 0;  // how many folds estimated it
   bool present() const { return !lambda_nm.empty(); }

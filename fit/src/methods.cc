@@ -31,6 +31,7 @@ struct FitMemo {
   };
   std::mutex mutex;
   std::map<std::string, Remembered> degree_choices;
+  std::shared_ptr<EndSampleFits> end_fits = MakeEndSampleFits();
 };
 
 std::shared_ptr<FitMemo> MakeFitMemo() { return std::make_shared<FitMemo>(); }
@@ -77,6 +78,7 @@ std::unique_ptr<AlloyModel> BuildPhysical(const Dataset& dataset, const FitSetti
   options.terms = settings.terms;
   options.covariance = settings.covariance && !settings.fold;
   options.check_physics = !settings.fold;
+  if (settings.memo) options.end_fits = settings.memo->end_fits.get();
   if (settings.max_iterations > 0) options.max_iterations = settings.max_iterations;
   // A fold starts at its parent's solution (warm): a fifth of the iterations is plenty
   // where the form fits, and where it does not (a degree too low) the fold's error is
@@ -707,6 +709,12 @@ double SigmaCalibration(const std::vector<double>& log_ratios) {
 
 std::unique_ptr<AlloyModel> BuildModel(const std::string& method, const Dataset& dataset,
                                        const FitSettings& settings) {
+  if (!settings.memo) {
+    // One memo for this fit, its candidates and its folds.
+    FitSettings with_memo = settings;
+    with_memo.memo = MakeFitMemo();
+    return BuildModel(method, dataset, with_memo);
+  }
   if (method == kAutoMethod) return BuildAuto(dataset, settings);
   if (ChoosesDegree(method, settings)) {
     Scored r = RememberedDegreeChoice(dataset, settings);

@@ -568,12 +568,22 @@ std::vector<SolveResult> FitSingle(const PhysicalLayout& layout, const SampleDat
   return distinct;
 }
 
-// FitSingle of an end sample, remembered for the life of the process: every leave-one-out
-// fold of a data set (the prediction error's, `validate`'s, auto's) keeps the same end
-// samples and fits them alike, and a fit is deterministic, so the remembered result is the
-// one a new fit would give. Keyed by everything FitSingle reads of its inputs.
+}  // namespace
+
+struct EndSampleFits {
+  std::mutex mutex;
+  std::map<std::string, std::vector<SolveResult>> fits;
+};
+
+std::shared_ptr<EndSampleFits> MakeEndSampleFits() { return std::make_shared<EndSampleFits>(); }
+
+namespace {
+
+// FitSingle of an end sample, through `remembered` when there is one: the remembered
+// result is the one a new fit would give. Keyed by everything FitSingle reads of its inputs.
 std::vector<SolveResult> FitEndSample(const PhysicalLayout& layout, const SampleData& s,
-                                      const FitData& data) {
+                                      const FitData& data, EndSampleFits* remembered) {
+  if (remembered == nullptr) return FitSingle(layout, s, data);
   std::string key = InterbandTermsText(layout.interband());
   const auto add = [&key](const void* bytes, size_t size) {
     key.append(static_cast<const char*>(bytes), size);
@@ -584,17 +594,14 @@ std::vector<SolveResult> FitEndSample(const PhysicalLayout& layout, const Sample
   add(&data.omega_max, sizeof data.omega_max);
   add(s.omega_ev.data(), s.omega_ev.size() * sizeof(double));
   add(s.eps.data(), s.eps.size() * sizeof(std::complex<double>));
-  static std::mutex mutex;
-  static std::map<std::string, std::vector<SolveResult>> remembered;
   {
-    const std::lock_guard<std::mutex> lock(mutex);
-    const auto it = remembered.find(key);
-    if (it != remembered.end()) return it->second;
+    const std::lock_guard<std::mutex> lock(remembered->mutex);
+    const auto it = remembered->fits.find(key);
+    if (it != remembered->fits.end()) return it->second;
   }
   std::vector<SolveResult> fits = FitSingle(layout, s, data);
-  const std::lock_guard<std::mutex> lock(mutex);
-  if (remembered.size() >= 64) remembered.clear();  // a bound on what is kept
-  remembered.emplace(std::move(key), fits);
+  const std::lock_guard<std::mutex> lock(remembered->mutex);
+  remembered->fits.emplace(std::move(key), fits);
   return fits;
 }
 
@@ -762,8 +769,8 @@ PhysicalFitResult FitPhysicalAtDegree(const Dataset& dataset, const PhysicalFitO
     msg << "fitting the end samples (x = " << lo_end.x << ", " << hi_end.x << ") with terms "
         << InterbandTermsText(k);
     progress(msg.str());
-    auto lo = FitEndSample(end_layout, lo_end, data);
-    auto hi = FitEndSample(end_layout, hi_end, data);
+    auto lo = FitEndSample(end_layout, lo_end, data, options.end_fits);
+    auto hi = FitEndSample(end_layout, hi_end, data, options.end_fits);
     const int p = end_layout.num_parameters();
     const double bic = Bic(lo.front().cost, 2 * lo_end.eps.size(), p) +
                        Bic(hi.front().cost, 2 * hi_end.eps.size(), p);

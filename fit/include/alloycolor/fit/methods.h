@@ -19,9 +19,11 @@
 
 namespace alloycolor::fit {
 
-// What fits within one job may reuse (`validate` builds physical and auto's physical
-// candidate on the same training samples): the physical degree choice, keyed by the
-// samples and settings. Thread-safe; made by MakeFitMemo, shared through FitSettings::memo.
+// What fits within one job may reuse, keyed by the samples and settings: the physical
+// degree choice (`validate` builds physical and auto's physical candidate on the same
+// training samples) and the physical fits of the end samples (every fold and candidate
+// keeps the ends). Thread-safe; made by MakeFitMemo, shared through FitSettings::memo;
+// BuildModel makes one for itself when none is given.
 struct FitMemo;
 std::shared_ptr<FitMemo> MakeFitMemo();
 
@@ -41,7 +43,7 @@ struct FitSettings {
   bool fold = false;
   const AlloyModel* start = nullptr;  // refit: start from this model (same method)
   int max_iterations = 0;  // physical: the solver's iterations, 0 for the fit's default
-  std::shared_ptr<FitMemo> memo;  // may be null: nothing reused
+  std::shared_ptr<FitMemo> memo;  // null: BuildModel makes one for this fit alone
   ProgressCallback progress;          // may be empty
   // auto (required there): the colorimeter its leave-one-out scores colour with, at normal
   // incidence; data without colour (infrared) are scored by reflectance.

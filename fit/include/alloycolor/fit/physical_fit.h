@@ -44,6 +44,12 @@
 
 namespace alloycolor::fit {
 
+// End-sample fits one job may reuse: every leave-one-out fold of a data set (the
+// prediction error's, `validate`'s, auto's) keeps the same end samples and fits them
+// alike, and a fit is deterministic. Thread-safe; made by MakeEndSampleFits.
+struct EndSampleFits;
+std::shared_ptr<EndSampleFits> MakeEndSampleFits();
+
 struct PhysicalFitOptions {
   // Fit range; both 0: the samples' common range within 300-1000 nm, or, when that is
   // shorter than 200 nm (infrared data), the whole common range.
@@ -64,6 +70,7 @@ struct PhysicalFitOptions {
   // false: no check for leaving physics (below) — for the model of a leave-one-out fold,
   // which only predicts its held-out samples and is never written or shown.
   bool check_physics = true;
+  EndSampleFits* end_fits = nullptr;  // may be null: the end samples fitted afresh
   std::function<void(const std::string& message)> progress;  // may be empty
 };
 

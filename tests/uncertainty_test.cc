@@ -10,6 +10,8 @@
 #include "alloycolor/color/material_color.h"
 #include "alloycolor/core/dataset.h"
 #include "alloycolor/core/error.h"
+#include "alloycolor/core/io.h"
+#include "alloycolor/model/optics.h"
 #include "alloycolor/fit/methods.h"
 #include "alloycolor/model/sample_models.h"
 #include "test_util.h"
@@ -113,6 +115,44 @@ TEST(PredictionError, FitsOfThreeCompositionsOrMoreCarryItAndTheFileKeepsIt) {
   EXPECT_EQ(ModelFromJson(older, "older")->prediction_error().end_factor, 1.0);
   settings.calibrate = false;
   EXPECT_FALSE(fit::BuildModel("eps-pchip", all, settings)->HasUncertainty());
+}
+
+// The end factor by hand. eps = -100 + i (1 + g(x)) at x = 0, 1/6, ..., 1 (every
+// wavelength alike), g = x / 2 + x^2 + (1/3 - x)^2 below 1/3 + (x - 2/3)^2 above 2/3.
+// eps-linear, leaving out x with neighbours h = 1/6 away, misses x^2 by h^2 = 2/72
+// everywhere (the line adds no error) and the end bumps by 2/72 at x = 1/6, 5/6 (end
+// intervals) and 1/72 at 1/3, 2/3. Errors 4, 4 at
+// the ends and 3, 2, 3 inside (in 1/72, all over the same B and nearly the same |eps|):
+// the ratio of geometric means 4 / 18^(1/3), shrunk with k = 2 to its square root.
+TEST(PredictionError, EndFactorByHand) {
+  const std::string dir = testing::MakeTempDir();
+  std::string samples;
+  for (int i = 0; i <= 6; ++i) {
+    const double x = i / 6.0;
+    const double g = 0.5 * x + x * x + std::pow(std::max(0.0, 1.0 / 3 - x), 2) +
+                     std::pow(std::max(0.0, x - 2.0 / 3), 2);
+    const Complex<double> nk = IndexFromPermittivity(Complex<double>{-100.0, 1.0 + g});
+    std::vector<double> l, n, k;
+    for (double lambda = 350; lambda <= 850; lambda += 10) {
+      l.push_back(lambda);
+      n.push_back(nk.re);
+      k.push_back(nk.im);
+    }
+    const std::string file = "s" + std::to_string(i) + ".csv";
+    testing::WriteText(dir + "/" + file, NkCsvText(l, n, k));
+    char entry[80];
+    std::snprintf(entry, sizeof entry, "%s{\"x\": %.17g, \"file\": \"%s\"}", i ? "," : "", x,
+                  file.c_str());
+    samples += entry;
+  }
+  testing::WriteText(dir + "/dataset.json",
+                     "{\"system\": {\"a\": \"Au\", \"b\": \"Ag\"}, \"composition\": "
+                     "\"atomic_fraction_a\", \"samples\": [" + samples + "]}");
+  const color::Colorimeter cm = color::Colorimeter::Load(DataDir(), "D65", 2);
+  fit::FitSettings settings;
+  settings.colorimeter = &cm;
+  const auto model = fit::BuildModel("eps-linear", LoadDataset(dir), settings);
+  EXPECT_NEAR(model->prediction_error().end_factor, std::sqrt(4 / std::cbrt(18.0)), 2e-3);
 }
 
 // The calibration by hand (docs/model-format.md): five folds that each saw twice the

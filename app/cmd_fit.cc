@@ -192,7 +192,8 @@ void RegisterFit(CLI::App& app) {
       "Fit a model to all samples of a data set and write it as a versioned JSON model "
       "file (docs/model-format.md). smooth: Ceres fit, at every wavelength, of eps1 and eps2 "
       "as monotone cubic (PCHIP) curves of composition through knots, a regression with "
-      "its smoothing chosen by leave-one-composition-out cross-validation (tau and m* "
+      "its smoothing chosen by leave-one-composition-out cross-validation (with fewer than "
+      "five compositions by the marginal likelihood, per wavelength; tau and m* "
       "follow from eps). physical: Ceres fit of a Drude + interband model (eps_inf, wp, gamma, "
       "Lorentz / critical-point / Rioux terms) whose parameters are polynomials in "
       "composition, to all samples at once, with covariance. paper, eps-linear: the "
@@ -224,7 +225,8 @@ void RegisterFit(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--smoothing", o->smoothing,
                   "smooth: weight of the roughness penalty across composition, 0 (interpolate) "
-                  "to 1e6 (default: chosen by leave-one-composition-out cross-validation)")
+                  "to 1e6 (default: chosen by leave-one-composition-out cross-validation, or with "
+                  "fewer than five compositions by the marginal likelihood)")
       ->check(NumberIn(0, 1e6));
   cmd->add_option("--lambda-from", o->lambda_from,
                   "smooth, physical: first wavelength of the fit grid, nm (physical default: "

@@ -152,21 +152,32 @@ void Finish(Solution* s) {
 
 // Knots at the compositions themselves: every sample sits on a knot, the model there is
 // the knot value, and the cost is linear least squares in each node's eps1 and eps2
-// separately. Solved directly from the normal equations (Eigen LDLT, K x K per part):
-// the minimum Ceres reaches too, at a small fraction of the time (cross-validation solves
-// it hundreds of times).
-Solution SolveAtCompositions(const GridData& g, const std::vector<char>& in, double smoothing,
-                             std::vector<double> knots) {
-  Solution s;
-  s.knots = std::move(knots);
-  const size_t nodes = g.grid_nm.size(), k = s.knots.size();
-  const std::vector<double> u = KnotsU(g, s.knots);
-  std::vector<size_t> knot_of(g.x.size(), 0);
+// separately: per node, (A + mu R) v = b with A = B^T W B (W the samples' relative weights
+// 1 / |eps|^2, B the sample-to-knot selection), b = B^T W y, R the roughness rows' Gram
+// matrix (SmoothRoughnessResidual with weight 1) and mu the node's smoothing weight.
+struct LinearSystems {
+  std::vector<double> knots;
+  std::vector<size_t> knot_of;  // per sample taking part
+  Eigen::MatrixXd rtr;          // R
+  std::vector<Eigen::MatrixXd> a, b;  // [node]: k x k, k x 2 (eps1, eps2)
+  std::vector<Eigen::Vector2d> ywy;   // [node]: y^T W y of eps1, eps2
+  std::vector<double> mu_per_smoothing;  // [node]: mu / smoothing (count / sum |eps|^2)
+  size_t samples = 0;
+};
+
+LinearSystems AssembleAtCompositions(const GridData& g, const std::vector<char>& in,
+                                     std::vector<double> knots) {
+  LinearSystems ls;
+  ls.knots = std::move(knots);
+  const size_t nodes = g.grid_nm.size(), k = ls.knots.size();
+  const std::vector<double> u = KnotsU(g, ls.knots);
+  ls.knot_of.assign(g.x.size(), 0);
   for (size_t i = 0; i < g.x.size(); ++i) {
-    if (in[i]) knot_of[i] = std::lower_bound(s.knots.begin(), s.knots.end(), g.x[i]) - s.knots.begin();
+    if (!in[i]) continue;
+    ls.knot_of[i] = std::lower_bound(ls.knots.begin(), ls.knots.end(), g.x[i]) - ls.knots.begin();
+    ++ls.samples;
   }
-  // R^T R of the roughness rows (SmoothRoughnessResidual with weight 1).
-  Eigen::MatrixXd rtr = Eigen::MatrixXd::Zero(k, k);
+  ls.rtr = Eigen::MatrixXd::Zero(k, k);
   for (size_t c = 1; c + 1 < k; ++c) {
     const double h0 = u[c] - u[c - 1], h1 = u[c + 1] - u[c];
     const double scale = 2.0 / (h0 + h1) * std::sqrt(0.5 * (h0 + h1));
@@ -174,40 +185,60 @@ Solution SolveAtCompositions(const GridData& g, const std::vector<char>& in, dou
     row[c - 1] = scale / h0;
     row[c] = -scale * (1 / h0 + 1 / h1);
     row[c + 1] = scale / h1;
-    rtr += row * row.transpose();
+    ls.rtr += row * row.transpose();
   }
-  s.eps1.assign(nodes, std::vector<double>(k));
-  s.eps2.assign(nodes, std::vector<double>(k));
-  double cost = 0;
   for (size_t j = 0; j < nodes; ++j) {
     Eigen::MatrixXd a = Eigen::MatrixXd::Zero(k, k);
     Eigen::MatrixXd b = Eigen::MatrixXd::Zero(k, 2);
+    Eigen::Vector2d ywy = Eigen::Vector2d::Zero();
     double sum_sq = 0;
-    int count = 0;
     for (size_t i = 0; i < g.x.size(); ++i) {
       if (!in[i]) continue;
       const std::complex<double> e = g.eps[i][j];
       const double w = 1.0 / std::norm(e);
-      a(knot_of[i], knot_of[i]) += w;
-      b(knot_of[i], 0) += w * e.real();
-      b(knot_of[i], 1) += w * e.imag();
+      const size_t c = ls.knot_of[i];
+      a(c, c) += w;
+      b(c, 0) += w * e.real();
+      b(c, 1) += w * e.imag();
+      ywy += w * Eigen::Vector2d(e.real() * e.real(), e.imag() * e.imag());
       sum_sq += std::norm(e);
-      ++count;
     }
-    const double mu = smoothing > 0 && k >= 3 ? smoothing * count / sum_sq : 0.0;
-    const Eigen::MatrixXd v = (a + mu * rtr).ldlt().solve(b);
+    ls.a.push_back(std::move(a));
+    ls.b.push_back(std::move(b));
+    ls.ywy.push_back(ywy);
+    ls.mu_per_smoothing.push_back(k >= 3 ? static_cast<double>(ls.samples) / sum_sq : 0.0);
+  }
+  return ls;
+}
+
+// Solved directly from the normal equations (Eigen LDLT, K x K per part): the minimum
+// Ceres reaches too, at a small fraction of the time (cross-validation solves it hundreds
+// of times).
+Solution SolveAtCompositions(const GridData& g, const std::vector<char>& in,
+                             const std::vector<double>& smoothing_per_node,
+                             std::vector<double> knots) {
+  const LinearSystems ls = AssembleAtCompositions(g, in, std::move(knots));
+  Solution s;
+  s.knots = ls.knots;
+  const size_t nodes = g.grid_nm.size(), k = s.knots.size();
+  s.eps1.assign(nodes, std::vector<double>(k));
+  s.eps2.assign(nodes, std::vector<double>(k));
+  double cost = 0;
+  for (size_t j = 0; j < nodes; ++j) {
+    const double mu = std::max(smoothing_per_node[j], 0.0) * ls.mu_per_smoothing[j];
+    const Eigen::MatrixXd v = (ls.a[j] + mu * ls.rtr).ldlt().solve(ls.b[j]);
     for (size_t c = 0; c < k; ++c) {
       s.eps1[j][c] = v(c, 0);
       s.eps2[j][c] = v(c, 1);
     }
-    cost += 0.5 * mu * (v.col(0).dot(rtr * v.col(0)) + v.col(1).dot(rtr * v.col(1)));
+    cost += 0.5 * mu * (v.col(0).dot(ls.rtr * v.col(0)) + v.col(1).dot(ls.rtr * v.col(1)));
   }
   Finish(&s);
   for (size_t i = 0; i < g.x.size(); ++i) {
     if (!in[i]) continue;
     for (size_t j = 0; j < nodes; ++j) {
       const std::complex<double> e = g.eps[i][j];
-      const std::complex<double> m(s.eps1[j][knot_of[i]], s.eps2[j][knot_of[i]]);
+      const std::complex<double> m(s.eps1[j][ls.knot_of[i]], s.eps2[j][ls.knot_of[i]]);
       s.data_sum_sq += std::norm(m - e) / std::norm(e);
       s.data_residuals += 2;
     }
@@ -216,6 +247,106 @@ Solution SolveAtCompositions(const GridData& g, const std::vector<char>& in, dou
   s.converged = true;
   s.termination = "direct solve";
   return s;
+}
+
+// The restricted log marginal likelihood (REML), up to a constant, of a smoothing at each
+// node, knots at the compositions. The model: y = B v + e, e ~ N(0, sigma^2 W^-1) with one
+// relative noise level sigma for every node and part, and v ~ N(0, sigma^2 (mu R)^+)
+// about a flat prior on R's null space (straight lines, 2 dimensions). Integrating v out,
+// summed over the node-parts (n samples, k knots):
+//   -(n - 2) / 2 log sigma^2 - Q / (2 sigma^2) - 1/2 log|A + mu R| + (k - 2) / 2 log mu
+// each, Q = y^T W y - b^T (A + mu R)^-1 b the penalised residual. A smoothing tending to 0
+// has a finite limit when every knot holds one sample; evaluated at kSmallestSmoothing.
+constexpr double kSmallestSmoothing = 1e-9;
+
+// Each node's terms at each candidate smoothing: its two parts' Q summed, and
+// -1/2 log|A + mu R| + (k - 2) / 2 log mu for both parts.
+struct EvidenceTerms {
+  std::vector<std::vector<double>> q, rest;  // [node][candidate]
+  size_t samples = 0, knots = 0;
+
+  EvidenceTerms(const LinearSystems& ls, const std::vector<double>& candidates)
+      : samples(ls.samples), knots(ls.knots.size()) {
+    for (size_t j = 0; j < ls.a.size(); ++j) {
+      q.emplace_back();
+      rest.emplace_back();
+      for (double candidate : candidates) {
+        const double mu = std::max(candidate, kSmallestSmoothing) * ls.mu_per_smoothing[j];
+        const Eigen::LLT<Eigen::MatrixXd> llt(ls.a[j] + mu * ls.rtr);
+        const Eigen::MatrixXd v = llt.solve(ls.b[j]);
+        double sum_q = 0;
+        for (int part = 0; part < 2; ++part) sum_q += ls.ywy[j][part] - ls.b[j].col(part).dot(v.col(part));
+        q.back().push_back(std::max(sum_q, 0.0));
+        rest.back().push_back(-2 * llt.matrixLLT().diagonal().array().log().sum() +
+                              (static_cast<double>(knots) - 2) * std::log(mu));
+      }
+    }
+  }
+  // The log evidence of choice[j] (a candidate's index) at every node, sigma^2 profiled.
+  double Total(const std::vector<size_t>& choice) const {
+    double sum_q = 0, sum_rest = 0;
+    for (size_t j = 0; j < q.size(); ++j) {
+      sum_q += q[j][choice[j]];
+      sum_rest += rest[j][choice[j]];
+    }
+    const double dof = (static_cast<double>(samples) - 2) * 2.0 * static_cast<double>(q.size());
+    return -0.5 * dof * std::log(sum_q / dof) - 0.5 * dof + sum_rest;
+  }
+  // At a given noise level, every node's best candidate.
+  std::vector<size_t> BestAt(double sigma2) const {
+    std::vector<size_t> choice(q.size(), 0);
+    for (size_t j = 0; j < q.size(); ++j) {
+      double best = -HUGE_VAL;
+      for (size_t c = 0; c < q[j].size(); ++c) {
+        const double value = -q[j][c] / (2 * sigma2) + rest[j][c];
+        if (value > best) {
+          best = value;
+          choice[j] = c;
+        }
+      }
+    }
+    return choice;
+  }
+};
+
+// The per-node candidates that maximise the evidence with one noise level: every node's
+// best candidate at each noise level of a fine logarithmic scan across the range the
+// candidates' own residuals span, then coordinate ascent (sigma^2 = sum Q / dof, every
+// node's best again) from the best of the scan. Empty when the data leave no residual at
+// any smoothing (eps linear in composition: every smoothing gives the same fit).
+std::vector<size_t> MostProbableSmoothings(const EvidenceTerms& terms) {
+  double q_lo = HUGE_VAL, q_hi = 0;
+  for (const auto& node : terms.q) {
+    for (double v : node) {
+      if (v > 0) q_lo = std::min(q_lo, v);
+      q_hi = std::max(q_hi, v);
+    }
+  }
+  if (!(q_hi > 0)) return {};
+  const double per_dof = 1.0 / (2.0 * (static_cast<double>(terms.samples) - 2));
+  const double lo = std::log(q_lo * per_dof) - 2, hi = std::log(q_hi * per_dof) + 2;
+  std::vector<size_t> best_choice;
+  double best = -HUGE_VAL;
+  constexpr int kSteps = 400;
+  for (int step = 0; step <= kSteps; ++step) {
+    std::vector<size_t> choice = terms.BestAt(std::exp(lo + (hi - lo) * step / kSteps));
+    const double total = terms.Total(choice);
+    if (total > best) {
+      best = total;
+      best_choice = std::move(choice);
+    }
+  }
+  for (int round = 0; round < 50; ++round) {
+    double sum_q = 0;
+    for (size_t j = 0; j < terms.q.size(); ++j) sum_q += terms.q[j][best_choice[j]];
+    const double dof = (static_cast<double>(terms.samples) - 2) * 2.0 * terms.q.size();
+    std::vector<size_t> choice = terms.BestAt(std::max(sum_q / dof, 1e-300));
+    const double total = terms.Total(choice);
+    if (!(total > best)) break;
+    best = total;
+    best_choice = std::move(choice);
+  }
+  return best_choice;
 }
 
 // Fewer knots than compositions: samples between knots make the cost nonlinear (the PCHIP
@@ -285,7 +416,9 @@ Solution Solve(const GridData& g, const std::vector<char>& in, double smoothing,
                const SmoothFitOptions& options) {
   const std::vector<double> compositions = Compositions(g, in);
   std::vector<double> knots = Knots(compositions, std::min(options.max_knots, kSmoothMaxKnots));
-  if (knots.size() == compositions.size()) return SolveAtCompositions(g, in, smoothing, knots);
+  if (knots.size() == compositions.size()) {
+    return SolveAtCompositions(g, in, std::vector<double>(g.grid_nm.size(), smoothing), knots);
+  }
   return SolveCeres(g, in, smoothing, options, std::move(knots));
 }
 
@@ -430,6 +563,8 @@ bool LeftOutErrors(const GridData& g, const std::vector<std::vector<double>>& fo
 }  // namespace
 
 constexpr double kGpMargin = 1.1;
+// Cross-validation chooses with this many folds or more; below, the marginal likelihood.
+constexpr size_t kMinFolds = 3;
 
 const std::vector<double>& SmoothingCandidates() {
   static const std::vector<double> kCandidates = {0, 1e-6, 1e-5, 1e-4, 1e-3, 1e-2, 1e-1, 1};
@@ -453,44 +588,66 @@ SmoothFitResult FitSmooth(const Dataset& dataset, const SmoothFitOptions& option
   SmoothFitResult result;
   double smoothing = options.smoothing;
   std::string chosen_by = "user";
-  if (smoothing < 0) {
-    const auto folds = Folds(compositions);
-    if (folds.size() < 2) {
-      smoothing = 0;
-      chosen_by = "default: fewer than four compositions, too few to cross-validate";
-    } else {
-      chosen_by = "leave-one-composition-out cross-validation";
-      double best = 1e300;
-      for (double candidate : SmoothingCandidates()) {
-        SampleError total;
-        LeftOutErrors(g, folds, [&](const std::vector<char>& in) {
-          Solution s = Solve(g, in, candidate, options);
-          s.converged = true;  // the Ceres form's best point counts either way
-          return s;
-        }, &total);
-        const double rms = std::sqrt(total.eps_sq / total.count);
-        const double rms_r = std::sqrt(total.reflectance_sq / total.count);
-        result.cross_validation.push_back({candidate, rms, rms_r});
-        std::ostringstream msg;
-        msg << "cross-validation: smoothing " << candidate
-            << ", leave-one-out RMS error: relative eps " << rms << ", reflectance " << rms_r;
-        Report(options.progress, msg.str());
-        if (rms_r < best) {
-          best = rms_r;
-          smoothing = candidate;
-        }
+  const auto folds = Folds(compositions);
+  const bool cross_validate = smoothing < 0 && folds.size() >= kMinFolds;
+  if (cross_validate) {
+    chosen_by = "leave-one-composition-out cross-validation";
+    double best = HUGE_VAL;
+    for (double candidate : SmoothingCandidates()) {
+      SampleError total;
+      LeftOutErrors(g, folds, [&](const std::vector<char>& in) {
+        Solution s = Solve(g, in, candidate, options);
+        s.converged = true;  // the Ceres form's best point counts either way
+        return s;
+      }, &total);
+      const double rms = std::sqrt(total.eps_sq / total.count);
+      const double rms_r = std::sqrt(total.reflectance_sq / total.count);
+      result.cross_validation.push_back({candidate, rms, rms_r});
+      std::ostringstream msg;
+      msg << "cross-validation: smoothing " << candidate
+          << ", leave-one-out RMS error: relative eps " << rms << ", reflectance " << rms_r;
+      Report(options.progress, msg.str());
+      if (rms_r < best) {
+        best = rms_r;
+        smoothing = candidate;
       }
     }
+  } else if (smoothing < 0 && compositions.size() >= 3 && g.x.size() >= 4 &&
+             compositions.size() <= static_cast<size_t>(options.max_knots)) {
+    // Too few interior compositions for cross-validation to decide: the marginal
+    // likelihood, which weighs every sample (the ends too) at every wavelength.
+    chosen_by = "restricted marginal likelihood (too few interior compositions to "
+                "cross-validate)";
+    const LinearSystems ls = AssembleAtCompositions(g, all, compositions);
+    const EvidenceTerms terms(ls, SmoothingCandidates());
+    const std::vector<size_t> choice = MostProbableSmoothings(terms);
+    for (size_t j = 0; j < grid.size(); ++j) {
+      result.smoothing_per_node.push_back(choice.empty() ? 0.0 : SmoothingCandidates()[choice[j]]);
+    }
+    for (double candidate : SmoothingCandidates()) {
+      const int nodes = static_cast<int>(std::count(result.smoothing_per_node.begin(),
+                                                    result.smoothing_per_node.end(), candidate));
+      result.evidence.push_back({candidate, nodes});
+      std::ostringstream msg;
+      msg << "marginal likelihood: smoothing " << candidate << " most probable at " << nodes
+          << " of " << grid.size() << " wavelengths";
+      Report(options.progress, msg.str());
+    }
+    std::vector<double> sorted = result.smoothing_per_node;
+    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+    smoothing = sorted[sorted.size() / 2];
+  } else if (smoothing < 0) {
+    smoothing = 0;
+    chosen_by = "default: three samples or fewer, too few to choose a smoothing";
   }
   // The Gaussian-process form, scored on the same folds, replaces the PCHIP form where it
   // beats the best smoothing by more than kGpMargin (the simpler form keeps ties: with
   // few folds leave-one-out flatters the more flexible one).
   bool use_gp = false;
-  if (options.smoothing < 0 && chosen_by != "user" && Folds(compositions).size() >= 2) {
+  if (cross_validate) {
     SampleError total;
     const bool scored = LeftOutErrors(
-        g, Folds(compositions), [&](const std::vector<char>& in) { return SolveGp(g, in); },
-        &total);
+        g, folds, [&](const std::vector<char>& in) { return SolveGp(g, in); }, &total);
     if (scored && total.count > 0) {
       result.gp_rms = std::sqrt(total.eps_sq / total.count);
       result.gp_rms_reflectance = std::sqrt(total.reflectance_sq / total.count);
@@ -516,8 +673,11 @@ SmoothFitResult FitSmooth(const Dataset& dataset, const SmoothFitOptions& option
     use_gp = false;
     Report(options.progress, "fitting " + std::to_string(g.x.size()) + " samples x " +
                                  std::to_string(grid.size()) + " wavelengths, smoothing " +
-                                 std::to_string(smoothing));
-    s = Solve(g, all, smoothing, options);
+                                 std::to_string(smoothing) +
+                                 (result.smoothing_per_node.empty() ? "" : " (median of the wavelengths')"));
+    s = result.smoothing_per_node.empty()
+            ? Solve(g, all, smoothing, options)
+            : SolveAtCompositions(g, all, result.smoothing_per_node, compositions);
   }
 
   FitSummary summary;
@@ -554,6 +714,13 @@ SmoothFitResult FitSmooth(const Dataset& dataset, const SmoothFitOptions& option
                   {"rms_reflectance", row.rms_reflectance}});
   }
   fit["cross_validation"] = cv;
+  if (!result.evidence.empty()) {
+    nlohmann::json evidence = nlohmann::json::array();
+    for (const auto& row : result.evidence) {
+      evidence.push_back({{"smoothing", row.smoothing}, {"wavelengths", row.nodes}});
+    }
+    fit["marginal_likelihood"] = evidence;
+  }
   fit["form"] = use_gp ? "gaussian process" : "pchip";
   if (result.gp_rms_reflectance >= 0) {
     nlohmann::json gp = {{"rms_relative_eps", result.gp_rms},
@@ -572,6 +739,23 @@ SmoothFitResult FitSmooth(const Dataset& dataset, const SmoothFitOptions& option
     result.model->AddWarnings({"the fit stopped before convergence: " + s.termination});
   }
   return result;
+}
+
+double SmoothingLogEvidence(const Dataset& dataset, const std::vector<double>& grid_nm,
+                            const std::vector<double>& smoothing_per_node) {
+  if (smoothing_per_node.size() != grid_nm.size()) {
+    throw Error("smoothing evidence: one smoothing per wavelength needed");
+  }
+  const GridData g = PrepareData(dataset, grid_nm);
+  const std::vector<char> all(g.x.size(), 1);
+  const std::vector<double> compositions = Compositions(g, all);
+  if (compositions.size() < 3 || g.x.size() < 3) {
+    throw Error(dataset.manifest_path + ": the smoothing evidence needs three compositions");
+  }
+  const EvidenceTerms terms(AssembleAtCompositions(g, all, compositions), smoothing_per_node);
+  std::vector<size_t> choice(grid_nm.size());
+  for (size_t j = 0; j < choice.size(); ++j) choice[j] = j;
+  return terms.Total(choice);
 }
 
 }  // namespace alloycolor::fit

@@ -38,7 +38,8 @@ const std::vector<MethodInfo>& Methods() {
        &ReadSampleModel<SampleModel::Kind::kEpsSpline>},
       {"smooth",
        "eps1 and eps2 fitted as monotone cubic curves of composition through knots at every "
-       "wavelength, a regression whose smoothing leave-one-composition-out chooses, or a "
+       "wavelength, a regression whose smoothing leave-one-composition-out (or, with few "
+       "compositions, the marginal likelihood) chooses, or a "
        "Gaussian process across composition where leave-one-out prefers it (dense series)",
        &ReadModel<SmoothModel>},
       {"physical",

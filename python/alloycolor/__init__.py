@@ -266,7 +266,8 @@ def fit(dataset: Union[Dataset, str], method: str = "smooth", *, degree: Optiona
 
     degree: composition degree (physical; default 2, or 1 where leave-one-out finds it clearly better; lowered where the fit leaves physics);
     smoothing: roughness penalty across composition (smooth; default: chosen
-    by leave-one-composition-out, 0 interpolates); terms: interband terms (physical);
+    by leave-one-composition-out, or with fewer than five compositions by the marginal
+    likelihood per wavelength; 0 interpolates); terms: interband terms (physical);
     lambda_range_nm: (from, to, step) of the fit grid; covariance: compute the physical
     fit's parameter covariance; progress: called with one-line messages. Every method
     fitted to three compositions or more carries a cross-validated uncertainty."""

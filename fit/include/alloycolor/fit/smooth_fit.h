@@ -15,10 +15,18 @@
 // chase each sample's scatter. The smoothing is chosen from the data by
 // leave-one-composition-out cross-validation over the interior compositions (ten groups
 // of them when there are more than twenty), scored by the left-out samples' normal-incidence
-// reflectance error; with fewer than four compositions the data cannot decide and it is 0.
+// reflectance error. With fewer than three interior compositions two left-out errors
+// cannot decide, and the restricted marginal likelihood (REML) chooses among the same
+// candidates, one for each wavelength node: the penalised fit read as a Gaussian model
+// (the roughness a prior on the curve, its strength free per node, where the curvature
+// across composition differs) with one relative noise level for all nodes, which weighs
+// every sample, the ends too. With three samples or fewer the smoothing is 0 (with one
+// interior composition the evidence cannot tell noise from curvature: for one node it
+// does not depend on the smoothing at all).
 //
 // The second form (fit/gp_regression.h): a Gaussian process across composition, one kernel
-// for all nodes, sampled at kSmoothMaxKnots even knots. The same folds score it, and it
+// for all nodes, sampled at kSmoothMaxKnots even knots. The cross-validation's folds score
+// it (only where they choose the smoothing), and it
 // replaces the PCHIP form where its left-out reflectance error is more than 10 % below the
 // best smoothing's: with dense samples of a smooth alloy series it uses them all (the
 // PCHIP form sees only each interval's neighbours); with few or scattered samples the
@@ -55,17 +63,33 @@ struct CrossValidationRow {
   double rms_reflectance;  // RMS normal-incidence reflectance error there (the score)
 };
 
+struct EvidenceRow {
+  double smoothing;
+  int nodes;  // the wavelengths where it is the most probable
+};
+
 struct SmoothFitResult {
   std::unique_ptr<SmoothModel> model;
-  std::vector<CrossValidationRow> cross_validation;  // empty when the smoothing was given
+  // Whichever chose the smoothing; both empty when it was given or there were too few samples.
+  std::vector<CrossValidationRow> cross_validation;
+  std::vector<EvidenceRow> evidence;
+  // The marginal likelihood's smoothing at each node of the grid (the model's smoothing()
+  // is their median); empty where it did not choose.
+  std::vector<double> smoothing_per_node;
   // The Gaussian-process form's leave-one-out errors (as CrossValidationRow); -1 when it
-  // was not scored (a given smoothing, or fewer than four compositions).
+  // was not scored (no cross-validation).
   double gp_rms = -1, gp_rms_reflectance = -1;
 };
 
 // Throws Error when the data set has fewer than two compositions or a sample does not
 // cover the grid, naming what is missing.
 SmoothFitResult FitSmooth(const Dataset& dataset, const SmoothFitOptions& options);
+
+// The restricted log marginal likelihood, up to a constant that depends only on the data,
+// of a smoothing at each node of grid_nm, knots at the compositions and one relative noise
+// level profiled out: how the fit weighs one choice of smoothings against another.
+double SmoothingLogEvidence(const Dataset& dataset, const std::vector<double>& grid_nm,
+                            const std::vector<double>& smoothing_per_node);
 
 }  // namespace alloycolor::fit
 

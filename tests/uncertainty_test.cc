@@ -156,13 +156,13 @@ TEST(PredictionError, EndFactorByHand) {
 }
 
 // The calibration by hand (docs/model-format.md): five folds that each saw twice the
-// predicted error: s^2 = 2 * 0.3^2 / 6 = 0.03, spread = sqrt(0.03 * 1.2) = 0.18974, the
-// one-sigma branch 2 exp(0.4677 * 0.18974) = 2.18559. Ratios 0.1, 1, 10: mu = 0,
-// s^2 = (0.18 + 2 ln(10)^2) / 4, spread = sqrt(s^2 * 4 / 3) = 1.89594, the two-sigma branch
-// exp(1.6449 * 1.89594) / 2 = 11.3078.
+// predicted error: s^2 = 2 * 0.6^2 / 6 = 0.12, spread = sqrt(0.12 * 1.2) = 0.37947, the
+// one-sigma branch 2 exp(0.4677 * 0.37947) = 2.38841. Ratios 0.1, 1, 10: mu = 0,
+// s^2 = (0.72 + 2 ln(10)^2) / 4, spread = sqrt(s^2 * 4 / 3) = 1.94283, the two-sigma branch
+// exp(1.6449 * 1.94283) / 2 = 12.2144.
 TEST(PredictionError, CalibrationByHand) {
-  EXPECT_NEAR(fit::SigmaCalibration(std::vector<double>(5, std::log(2.0))), 2.18559, 1e-4);
-  EXPECT_NEAR(fit::SigmaCalibration({std::log(0.1), 0.0, std::log(10.0)}), 11.3078, 1e-3);
+  EXPECT_NEAR(fit::SigmaCalibration(std::vector<double>(5, std::log(2.0))), 2.38841, 1e-4);
+  EXPECT_NEAR(fit::SigmaCalibration({std::log(0.1), 0.0, std::log(10.0)}), 12.2144, 1e-3);
   EXPECT_EQ(fit::SigmaCalibration({}), 1.0);
   EXPECT_EQ(fit::SigmaCalibration({-50.0}), 1e-3);  // clamped
 }

@@ -695,7 +695,7 @@ bool ChoosesDegree(const std::string& method, const FitSettings& settings) {
 
 double SigmaCalibration(const std::vector<double>& log_ratios) {
   if (log_ratios.empty()) return 1;
-  constexpr double kPriorLogSpread = 0.3, kPriorFolds = 2;
+  constexpr double kPriorLogSpread = 0.6, kPriorFolds = 2;
   const double f = static_cast<double>(log_ratios.size());
   double mu = 0, sq = 0;
   for (double v : log_ratios) mu += v;

@@ -70,7 +70,7 @@ std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings&
 
 // The calibration of a prediction error's one-sigma colour uncertainty from its folds'
 // log ratios of observed to uncalibrated predicted CIEDE2000 (docs/model-format.md): the
-// ratios taken as log-normal, their variance pooled with a prior spread of 0.3 worth two
+// ratios taken as log-normal, their variance pooled with a prior spread of 0.6 worth two
 // folds and widened by (1 + 1/f); the factor puts 68 % of new ratios inside one sigma, or
 // 95 % inside two where the spread is wide. 1 for no folds; clamped to 1e-3..1e3.
 double SigmaCalibration(const std::vector<double>& log_ratios);

@@ -2,6 +2,8 @@
 // calculation; interpolation (eps-pchip) at zero smoothing, the weighted least-squares line
 // at large smoothing, a regression that beats the noise on noisy data, passivity,
 // determinism, JSON round trip, refit, and the accuracy figures on Au-Ag.
+#include "alloycolor/fit/smooth_fit.h"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -10,15 +12,14 @@
 #include <functional>
 #include <random>
 
-#include "alloycolor/fit/smooth_costs.h"
-#include "alloycolor/fit/smooth_fit.h"
+#include "alloycolor/color/material_color.h"
 #include "alloycolor/core/dataset.h"
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/io.h"
+#include "alloycolor/core/units.h"
+#include "alloycolor/fit/smooth_costs.h"
 #include "alloycolor/model/interpolation.h"
 #include "alloycolor/model/sample_models.h"
-#include "alloycolor/core/units.h"
-#include "alloycolor/color/material_color.h"
 #include "test_util.h"
 
 namespace alloycolor {
@@ -251,8 +252,7 @@ double CovarianceFormEvidence(const std::vector<double>& xs, const std::vector<d
       sum_sq += std::norm(e);
     }
     const double mu = smoothing[j] * static_cast<double>(k) / sum_sq;
-    const Eigen::MatrixXd prior =
-        (mu * r_gram).completeOrthogonalDecomposition().pseudoInverse();
+    const Eigen::MatrixXd prior = (mu * r_gram).completeOrthogonalDecomposition().pseudoInverse();
     const Eigen::MatrixXd cov = l.transpose() * (prior + Eigen::MatrixXd(w_inv.asDiagonal())) * l;
     const Eigen::LDLT<Eigen::MatrixXd> ldlt(cov);
     for (const Eigen::VectorXd* y : {&y1, &y2}) {
@@ -275,9 +275,9 @@ std::complex<double> Wobbly(double x, double lambda) {
 TEST(SmoothFit, TheMarginalLikelihoodIsTheCovarianceForm) {
   const std::vector<double> xs = {0.0, 0.3, 0.55, 1.0}, grid = {450.0, 600.0, 700.0};
   const Dataset data = LoadDataset(WriteSyntheticDataset(xs, Wobbly));
-  const std::vector<std::vector<double>> choices = {
-      {1e-3, 1e-3, 1e-3}, {1e-6, 1e-6, 1e-6}, {1e-2, 1e-2, 1e-2}, {1, 1, 1},
-      {1e-5, 1e-2, 1e-1}, {1, 1e-4, 1e-6}};
+  const std::vector<std::vector<double>> choices = {{1e-3, 1e-3, 1e-3}, {1e-6, 1e-6, 1e-6},
+                                                    {1e-2, 1e-2, 1e-2}, {1, 1, 1},
+                                                    {1e-5, 1e-2, 1e-1}, {1, 1e-4, 1e-6}};
   const double ref = fit::SmoothingLogEvidence(data, grid, choices[0]);
   const double ref_cov = CovarianceFormEvidence(xs, grid, Wobbly, choices[0]);
   for (const auto& choice : choices) {
@@ -299,7 +299,8 @@ TEST(SmoothFit, WithFourCompositionsTheMostProbableSmoothingsAreChosen) {
   const auto result = fit::FitSmooth(data, options);
   EXPECT_TRUE(result.cross_validation.empty());
   EXPECT_EQ(result.model->fit_summary().details["smoothing_chosen_by"].get<std::string>().rfind(
-                "restricted marginal likelihood", 0), 0u);
+                "restricted marginal likelihood", 0),
+            0u);
   const std::vector<double> chosen = result.smoothing_per_node;
   ASSERT_EQ(chosen.size(), grid.size());
   int counted = 0;
@@ -309,7 +310,8 @@ TEST(SmoothFit, WithFourCompositionsTheMostProbableSmoothingsAreChosen) {
   for (double candidate : fit::SmoothingCandidates()) {
     const double c = std::max(candidate, 1e-9);
     EXPECT_LE(fit::SmoothingLogEvidence(data, grid, std::vector<double>(grid.size(), c)),
-              best + 1e-9) << candidate;
+              best + 1e-9)
+        << candidate;
     for (size_t j = 0; j < grid.size(); ++j) {
       std::vector<double> other = chosen;
       other[j] = c;
@@ -352,9 +354,9 @@ TEST(SmoothFit, WithFourCompositionsTheMarginalLikelihoodSmoothsScatter) {
 // the smoothing chosen per node keeps each as close as eps-pchip (one smoothing shared by
 // all nodes would be 1e-3 to 1e-2 here, and err 1.2-3.1x eps-pchip).
 TEST(SmoothFit, WithFourCleanSamplesOfAMovingEdgeItStaysAsCloseAsPchip) {
-  for (const auto& xs : {std::vector<double>{0.0, 0.35, 0.6, 1.0},
-                         std::vector<double>{0.0, 0.3, 0.7, 1.0},
-                         std::vector<double>{0.0, 0.2, 0.5, 1.0}}) {
+  for (const auto& xs :
+       {std::vector<double>{0.0, 0.35, 0.6, 1.0}, std::vector<double>{0.0, 0.3, 0.7, 1.0},
+        std::vector<double>{0.0, 0.2, 0.5, 1.0}}) {
     const Dataset data = LoadDataset(WriteSyntheticDataset(xs, Series));
     const auto result = fit::FitSmooth(data, fit::SmoothFitOptions{});
     const SampleModel pchip(SampleModel::Kind::kEpsPchip, data);
@@ -362,12 +364,14 @@ TEST(SmoothFit, WithFourCleanSamplesOfAMovingEdgeItStaysAsCloseAsPchip) {
     for (double x = 0.05; x < 1.0; x += 0.05) {
       for (double lambda = 400; lambda <= 780; lambda += 20) {
         const std::complex<double> truth = Series(x, lambda);
-        model_sq += std::norm(result.model->Permittivity(x, {lambda})[0] - truth) / std::norm(truth);
+        model_sq +=
+            std::norm(result.model->Permittivity(x, {lambda})[0] - truth) / std::norm(truth);
         pchip_sq += std::norm(pchip.Permittivity(x, {lambda})[0] - truth) / std::norm(truth);
       }
     }
     // Measured: 1.0006, 1.002, 1.0003 of eps-pchip's squared error.
-    EXPECT_LT(model_sq, 1.05 * pchip_sq) << xs[1] << ": model " << model_sq << ", pchip " << pchip_sq;
+    EXPECT_LT(model_sq, 1.05 * pchip_sq)
+        << xs[1] << ": model " << model_sq << ", pchip " << pchip_sq;
   }
 }
 

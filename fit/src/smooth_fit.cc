@@ -157,10 +157,10 @@ void Finish(Solution* s) {
 // matrix (SmoothRoughnessResidual with weight 1) and mu the node's smoothing weight.
 struct LinearSystems {
   std::vector<double> knots;
-  std::vector<size_t> knot_of;  // per sample taking part
-  Eigen::MatrixXd rtr;          // R
-  std::vector<Eigen::MatrixXd> a, b;  // [node]: k x k, k x 2 (eps1, eps2)
-  std::vector<Eigen::Vector2d> ywy;   // [node]: y^T W y of eps1, eps2
+  std::vector<size_t> knot_of;           // per sample taking part
+  Eigen::MatrixXd rtr;                   // R
+  std::vector<Eigen::MatrixXd> a, b;     // [node]: k x k, k x 2 (eps1, eps2)
+  std::vector<Eigen::Vector2d> ywy;      // [node]: y^T W y of eps1, eps2
   std::vector<double> mu_per_smoothing;  // [node]: mu / smoothing (count / sum |eps|^2)
   size_t samples = 0;
 };
@@ -275,22 +275,28 @@ struct EvidenceTerms {
         const Eigen::LLT<Eigen::MatrixXd> llt(ls.a[j] + mu * ls.rtr);
         const Eigen::MatrixXd v = llt.solve(ls.b[j]);
         double sum_q = 0;
-        for (int part = 0; part < 2; ++part) sum_q += ls.ywy[j][part] - ls.b[j].col(part).dot(v.col(part));
+        for (int part = 0; part < 2; ++part)
+          sum_q += ls.ywy[j][part] - ls.b[j].col(part).dot(v.col(part));
         q.back().push_back(std::max(sum_q, 0.0));
         rest.back().push_back(-2 * llt.matrixLLT().diagonal().array().log().sum() +
                               (static_cast<double>(knots) - 2) * std::log(mu));
       }
     }
   }
+  // The residual's degrees of freedom: n - 2 per node-part.
+  double Dof() const {
+    return (static_cast<double>(samples) - 2) * 2.0 * static_cast<double>(q.size());
+  }
+  double SumQ(const std::vector<size_t>& choice) const {
+    double sum_q = 0;
+    for (size_t j = 0; j < q.size(); ++j) sum_q += q[j][choice[j]];
+    return sum_q;
+  }
   // The log evidence of choice[j] (a candidate's index) at every node, sigma^2 profiled.
   double Total(const std::vector<size_t>& choice) const {
-    double sum_q = 0, sum_rest = 0;
-    for (size_t j = 0; j < q.size(); ++j) {
-      sum_q += q[j][choice[j]];
-      sum_rest += rest[j][choice[j]];
-    }
-    const double dof = (static_cast<double>(samples) - 2) * 2.0 * static_cast<double>(q.size());
-    return -0.5 * dof * std::log(sum_q / dof) - 0.5 * dof + sum_rest;
+    double sum_rest = 0;
+    for (size_t j = 0; j < q.size(); ++j) sum_rest += rest[j][choice[j]];
+    return -0.5 * Dof() * (std::log(SumQ(choice) / Dof()) + 1) + sum_rest;
   }
   // At a given noise level, every node's best candidate.
   std::vector<size_t> BestAt(double sigma2) const {
@@ -323,7 +329,8 @@ std::vector<size_t> MostProbableSmoothings(const EvidenceTerms& terms) {
     }
   }
   if (!(q_hi > 0)) return {};
-  const double per_dof = 1.0 / (2.0 * (static_cast<double>(terms.samples) - 2));
+  // One node's share of the degrees of freedom.
+  const double per_dof = static_cast<double>(terms.q.size()) / terms.Dof();
   const double lo = std::log(q_lo * per_dof) - 2, hi = std::log(q_hi * per_dof) + 2;
   std::vector<size_t> best_choice;
   double best = -HUGE_VAL;
@@ -337,10 +344,8 @@ std::vector<size_t> MostProbableSmoothings(const EvidenceTerms& terms) {
     }
   }
   for (int round = 0; round < 50; ++round) {
-    double sum_q = 0;
-    for (size_t j = 0; j < terms.q.size(); ++j) sum_q += terms.q[j][best_choice[j]];
-    const double dof = (static_cast<double>(terms.samples) - 2) * 2.0 * terms.q.size();
-    std::vector<size_t> choice = terms.BestAt(std::max(sum_q / dof, 1e-300));
+    std::vector<size_t> choice =
+        terms.BestAt(std::max(terms.SumQ(best_choice) / terms.Dof(), 1e-300));
     const double total = terms.Total(choice);
     if (!(total > best)) break;
     best = total;
@@ -595,11 +600,14 @@ SmoothFitResult FitSmooth(const Dataset& dataset, const SmoothFitOptions& option
     double best = HUGE_VAL;
     for (double candidate : SmoothingCandidates()) {
       SampleError total;
-      LeftOutErrors(g, folds, [&](const std::vector<char>& in) {
-        Solution s = Solve(g, in, candidate, options);
-        s.converged = true;  // the Ceres form's best point counts either way
-        return s;
-      }, &total);
+      LeftOutErrors(
+          g, folds,
+          [&](const std::vector<char>& in) {
+            Solution s = Solve(g, in, candidate, options);
+            s.converged = true;  // the Ceres form's best point counts either way
+            return s;
+          },
+          &total);
       const double rms = std::sqrt(total.eps_sq / total.count);
       const double rms_r = std::sqrt(total.reflectance_sq / total.count);
       result.cross_validation.push_back({candidate, rms, rms_r});
@@ -616,23 +624,25 @@ SmoothFitResult FitSmooth(const Dataset& dataset, const SmoothFitOptions& option
              compositions.size() <= static_cast<size_t>(options.max_knots)) {
     // Too few interior compositions for cross-validation to decide: the marginal
     // likelihood, which weighs every sample (the ends too) at every wavelength.
-    chosen_by = "restricted marginal likelihood (too few interior compositions to "
-                "cross-validate)";
+    chosen_by =
+        "restricted marginal likelihood (too few interior compositions to "
+        "cross-validate)";
     const LinearSystems ls = AssembleAtCompositions(g, all, compositions);
     const EvidenceTerms terms(ls, SmoothingCandidates());
     const std::vector<size_t> choice = MostProbableSmoothings(terms);
     for (size_t j = 0; j < grid.size(); ++j) {
       result.smoothing_per_node.push_back(choice.empty() ? 0.0 : SmoothingCandidates()[choice[j]]);
     }
+    std::ostringstream msg;
+    msg << "marginal likelihood, the most probable smoothing per wavelength:";
     for (double candidate : SmoothingCandidates()) {
       const int nodes = static_cast<int>(std::count(result.smoothing_per_node.begin(),
                                                     result.smoothing_per_node.end(), candidate));
       result.evidence.push_back({candidate, nodes});
-      std::ostringstream msg;
-      msg << "marginal likelihood: smoothing " << candidate << " most probable at " << nodes
-          << " of " << grid.size() << " wavelengths";
-      Report(options.progress, msg.str());
+      if (nodes > 0) msg << " " << candidate << " at " << nodes << ",";
     }
+    msg << " of " << grid.size() << " wavelengths";
+    Report(options.progress, msg.str());
     std::vector<double> sorted = result.smoothing_per_node;
     std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
     smoothing = sorted[sorted.size() / 2];
@@ -671,10 +681,10 @@ SmoothFitResult FitSmooth(const Dataset& dataset, const SmoothFitOptions& option
   }
   if (!s.converged) {
     use_gp = false;
-    Report(options.progress, "fitting " + std::to_string(g.x.size()) + " samples x " +
-                                 std::to_string(grid.size()) + " wavelengths, smoothing " +
-                                 std::to_string(smoothing) +
-                                 (result.smoothing_per_node.empty() ? "" : " (median of the wavelengths')"));
+    Report(options.progress,
+           "fitting " + std::to_string(g.x.size()) + " samples x " + std::to_string(grid.size()) +
+               " wavelengths, smoothing " + std::to_string(smoothing) +
+               (result.smoothing_per_node.empty() ? "" : " (median of the wavelengths')"));
     s = result.smoothing_per_node.empty()
             ? Solve(g, all, smoothing, options)
             : SolveAtCompositions(g, all, result.smoothing_per_node, compositions);

@@ -749,13 +749,24 @@ std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings&
   inner.progress = {};
   inner.start = nullptr;
   std::vector<Scored> candidates;
+  const int compositions = static_cast<int>(DistinctCompositions(dataset).size());
   for (const std::string& method : order) {
     Report(settings.progress, "auto: scoring " + method + " by leave-one-out over " +
                                   std::to_string(held_out) + " interior compositions");
     candidates.push_back(ChoosesDegree(method, inner)
                              ? RememberedDegreeChoice(dataset, inner)
                              : BuildScored(method, dataset, inner));
-    selection.scores.push_back(candidates.back().score);
+    Scored& r = candidates.back();
+    // The folds must score the model delivered: a fold holds compositions - 1, enough
+    // for degree compositions - 2 at most (three compositions: the physical model is
+    // delivered at degree 2 and its folds are degree-1 fits to two samples).
+    if (method == "physical" && r.model && r.model->fit_summary().degree > compositions - 2) {
+      r.score.error = "its folds (" + std::to_string(compositions - 1) +
+                      " compositions each) cannot fit its degree " +
+                      std::to_string(r.model->fit_summary().degree);
+      r.model.reset();
+    }
+    selection.scores.push_back(r.score);
     if (selection.metric.empty()) selection.metric = candidates.back().metric;
   }
   const Choice c = ChooseSimplest(candidates);

@@ -286,6 +286,7 @@ TEST(SmoothFit, TheMarginalLikelihoodIsTheCovarianceForm) {
                 1e-6 * (1 + std::abs(expected)))
         << choice[0] << " " << choice[1] << " " << choice[2];
   }
+  EXPECT_THROW(fit::SmoothingLogEvidence(data, grid, {1e-3, 1e-3}), Error);  // one per node
 }
 
 // Four compositions: too few interior ones to cross-validate, so the marginal likelihood

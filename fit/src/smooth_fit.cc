@@ -648,7 +648,7 @@ SmoothFitResult FitSmooth(const Dataset& dataset, const SmoothFitOptions& option
     smoothing = sorted[sorted.size() / 2];
   } else if (smoothing < 0) {
     smoothing = 0;
-    chosen_by = "default: three samples or fewer, too few to choose a smoothing";
+    chosen_by = "default: too few samples (or knots) to choose a smoothing";
   }
   // The Gaussian-process form, scored on the same folds, replaces the PCHIP form where it
   // beats the best smoothing by more than kGpMargin (the simpler form keeps ties: with

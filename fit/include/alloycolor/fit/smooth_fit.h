@@ -26,9 +26,8 @@
 //
 // The second form (fit/gp_regression.h): a Gaussian process across composition, one kernel
 // for all nodes, sampled at kSmoothMaxKnots even knots. The cross-validation's folds score
-// it (only where they choose the smoothing), and it
-// replaces the PCHIP form where its left-out reflectance error is more than 10 % below the
-// best smoothing's: with dense samples of a smooth alloy series it uses them all (the
+// it (only where they choose the smoothing), and it replaces the PCHIP form where its
+// left-out reflectance error is more than 10 % below the best smoothing's: with dense samples of a smooth alloy series it uses them all (the
 // PCHIP form sees only each interval's neighbours); with few or scattered samples the
 // PCHIP form stays. A given smoothing keeps the PCHIP form.
 #ifndef ALLOYCOLOR_FIT_SMOOTH_FIT_H_

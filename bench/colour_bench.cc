@@ -97,7 +97,8 @@ color::XYZ NaiveXYZFromEps(const color::Colorimeter& colorimeter,
 }
 
 // The smooth model evaluated straightforwardly from its knots, with std::complex: at each
-// wavelength both neighbouring nodes' PCHIP curves (slopes recomputed) and the blend.
+// wavelength both neighbouring nodes' PCHIP curves (slopes recomputed), the blend, and eps
+// from it.
 std::vector<std::complex<double>> NaiveSmoothEps(const SmoothModel& model, double x,
                                                  const std::vector<double>& grid) {
   const std::vector<double>& nodes = model.grid_nm();
@@ -110,11 +111,12 @@ std::vector<std::complex<double>> NaiveSmoothEps(const SmoothModel& model, doubl
     std::complex<double> e[2];
     for (int side = 0; side < 2; ++side) {
       const size_t j = hi - 1 + side;
-      const Interpolant e1(Interpolation::kPchip, knots, model.eps1()[j]);
-      const Interpolant e2(Interpolation::kPchip, knots, model.eps2()[j]);
+      const Interpolant e1(Interpolation::kPchip, knots, model.part1()[j]);
+      const Interpolant e2(Interpolation::kPchip, knots, model.part2()[j]);
       e[side] = {e1(x), e2(x)};
     }
-    eps.push_back(e[0] * (1 - t) + e[1] * t);
+    const std::complex<double> parts = e[0] * (1 - t) + e[1] * t;
+    eps.push_back(EpsFromParts(model.space(), parts.real(), parts.imag()));
   }
   return eps;
 }

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <array>
 #include <cmath>
 #include <complex>
 #include <functional>
@@ -58,7 +59,8 @@ std::string WriteSyntheticDataset(
 TEST(SmoothCosts, DataResidualJacobianMatchesFiniteDifferences) {
   const std::vector<double> knots = {0.0, 0.3, 0.55, 1.0};
   std::unique_ptr<ceres::CostFunction> cost(
-      fit::SmoothDataResidual::Create(knots, 0.42, std::complex<double>(-12.0, 1.5)));
+      fit::SmoothDataResidual::Create(knots, 0.42, std::complex<double>(-12.0, 1.5),
+                                      1 / std::abs(std::complex<double>(-12.0, 1.5))));
   double e1[4] = {-30.0, -18.0, -11.0, -6.0}, e2[4] = {0.4, 1.9, 1.2, 3.0};
   const double* blocks[2] = {e1, e2};
   double residual[2], j1[8], j2[8];
@@ -297,6 +299,7 @@ TEST(SmoothFit, WithFourCompositionsTheMostProbableSmoothingsAreChosen) {
   const Dataset data = LoadDataset(WriteSyntheticDataset(xs, Wobbly));
   fit::SmoothFitOptions options;
   options.grid_nm = grid;
+  options.space = SmoothSpace::kEps;  // SmoothingLogEvidence weighs eps
   const auto result = fit::FitSmooth(data, options);
   EXPECT_TRUE(result.cross_validation.empty());
   EXPECT_EQ(result.model->fit_summary().details["smoothing_chosen_by"].get<std::string>().rfind(
@@ -395,6 +398,124 @@ TEST(SmoothFit, StaysPassiveWhereTheDataAreNearlyTransparent) {
       }
     }
   }
+}
+
+// The two parts of eps in each space, by hand: ln|eps| and arg eps in [0, pi] for the
+// logarithm, eps2 taken as 0 where it is negative; back again with arg held to [0, pi].
+TEST(SmoothSpaces, PartsOfEpsByHand) {
+  using P = std::array<double, 2>;
+  EXPECT_EQ(PartsFromEps(SmoothSpace::kEps, {-3.0, 4.0}), (P{-3.0, 4.0}));
+  const P p = PartsFromEps(SmoothSpace::kLogEps, {3.0, 4.0});
+  EXPECT_NEAR(p[0], std::log(5.0), 1e-15);
+  EXPECT_NEAR(p[1], std::atan2(4.0, 3.0), 1e-15);
+  EXPECT_NEAR(PartsFromEps(SmoothSpace::kLogEps, {-1.0, 0.0})[1], kPi, 1e-15);
+  EXPECT_NEAR(PartsFromEps(SmoothSpace::kLogEps, {-1.0, -0.5})[1], kPi, 1e-15);  // passive
+  EXPECT_NEAR(PartsFromEps(SmoothSpace::kLogEps, {0.0, 2.0})[1], kPi / 2, 1e-15);
+  const std::complex<double> e =
+      EpsFromParts(SmoothSpace::kLogEps, std::log(5.0), std::atan2(4.0, 3.0));
+  EXPECT_NEAR(e.real(), 3.0, 1e-14);
+  EXPECT_NEAR(e.imag(), 4.0, 1e-14);
+  const std::complex<double> held = EpsFromParts(SmoothSpace::kLogEps, 0.0, 4.0);
+  EXPECT_NEAR(held.real(), -1.0, 1e-15);
+  EXPECT_GE(held.imag(), 0.0);
+  EXPECT_EQ(EpsFromParts(SmoothSpace::kLogEps, 0.0, -1.0), std::complex<double>(1.0, 0.0));
+}
+
+// A dielectric (x = 0) and a metal (x = 1) with ln eps linear in composition between them:
+// eps the geometric interpolation, arg eps running from near 0 to near pi.
+std::complex<double> Geometric(double x, double lambda) {
+  const std::complex<double> metal(-20.0 - 0.02 * (lambda - 500), 1.5 + 0.002 * lambda);
+  const std::complex<double> dielectric(4.0 + 0.001 * lambda, 0.3);
+  return std::exp((1 - x) * std::log(dielectric) + x * std::log(metal));
+}
+
+// Two metals with eps linear in composition between them.
+std::complex<double> LinearEps(double x, double lambda) {
+  return (1 - x) * std::complex<double>(-20.0 - 0.02 * (lambda - 500), 1.5) +
+         x * std::complex<double>(-5.0, 5.0 + 0.001 * lambda);
+}
+
+TEST(SmoothFit, WhereLnEpsIsLinearInCompositionTheLogarithmIsChosenAndExact) {
+  const Dataset data =
+      LoadDataset(WriteSyntheticDataset({0.0, 0.2, 0.45, 0.6, 0.8, 1.0}, Geometric));
+  const auto result = fit::FitSmooth(data, fit::SmoothFitOptions{});
+  ASSERT_EQ(result.model->space(), SmoothSpace::kLogEps);
+  EXPECT_NE(
+      result.model->fit_summary().details["space_chosen_by"].get<std::string>().find(": ln eps"),
+      std::string::npos);
+  const SampleModel pchip(SampleModel::Kind::kEpsPchip, data);
+  const std::vector<double> grid = {400.0, 555.0, 700.0};
+  double pchip_worst = 0;
+  for (double x : {0.1, 0.33, 0.5, 0.7, 0.9}) {
+    const auto model = result.model->Permittivity(x, grid), other = pchip.Permittivity(x, grid);
+    for (size_t i = 0; i < grid.size(); ++i) {
+      const std::complex<double> truth = Geometric(x, grid[i]);
+      EXPECT_LT(std::abs(model[i] - truth), 1e-6 * std::abs(truth)) << x << " " << grid[i];
+      pchip_worst = std::max(pchip_worst, std::abs(other[i] - truth) / std::abs(truth));
+    }
+  }
+  EXPECT_GT(pchip_worst, 1e-2);     // interpolating eps itself would have been wrong
+  for (int i = 0; i <= 200; ++i) {  // passive at every composition
+    for (const std::complex<double>& e :
+         result.model->Permittivity(i / 200.0, UniformGrid(380, 800, 20))) {
+      ASSERT_GE(e.imag(), 0.0) << i;
+    }
+  }
+}
+
+TEST(SmoothFit, WhereEpsIsLinearInCompositionEpsIsKept) {
+  // Three compositions (one fold) and five (cross-validation).
+  for (const std::vector<double>& xs :
+       {std::vector<double>{0.0, 0.4, 1.0}, std::vector<double>{0.0, 0.2, 0.45, 0.6, 1.0}}) {
+    const Dataset data = LoadDataset(WriteSyntheticDataset(xs, LinearEps));
+    const auto model = fit::FitSmooth(data, fit::SmoothFitOptions{}).model;
+    EXPECT_EQ(model->space(), SmoothSpace::kEps) << xs.size();
+    for (double x : {0.1, 0.5, 0.9}) {
+      const std::complex<double> e = model->Permittivity(x, {555.0})[0],
+                                 truth = LinearEps(x, 555.0);
+      EXPECT_LT(std::abs(e - truth), 1e-6 * std::abs(truth)) << xs.size() << " " << x;
+    }
+  }
+}
+
+TEST(SmoothFit, TheLogarithmsFileReadsBackAndItsDamageIsNamed) {
+  const Dataset data = LoadDataset(WriteSyntheticDataset({0.0, 0.3, 0.6, 1.0}, Geometric));
+  fit::SmoothFitOptions options;
+  options.space = SmoothSpace::kLogEps;
+  const auto model = fit::FitSmooth(data, options).model;
+  const nlohmann::json doc = model->ToJson();
+  EXPECT_EQ(doc["parameters"]["space"], "log_eps");
+  ASSERT_TRUE(doc["parameters"].contains("ln_abs_eps"));
+  ASSERT_TRUE(doc["parameters"].contains("arg_eps_rad"));
+  const auto back = ModelFromJson(doc, "m.json");
+  const std::vector<double> grid = UniformGrid(380, 800, 5);
+  for (double x : {0.0, 0.15, 0.5, 1.0})
+    EXPECT_EQ(back->Permittivity(x, grid), model->Permittivity(x, grid));
+  auto expect_error = [](const nlohmann::json& bad, const std::string& needle) {
+    try {
+      ModelFromJson(bad, "m.json");
+      FAIL() << "no error for " << needle;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("m.json"), std::string::npos) << e.what();
+    }
+  };
+  nlohmann::json bad = doc;
+  bad["parameters"]["space"] = "magic";
+  expect_error(bad, "parameters.space");
+  bad = doc;
+  bad["parameters"]["arg_eps_rad"][1][2] = 3.5;
+  expect_error(bad, "arg_eps_rad[1]");
+  bad = doc;
+  bad["parameters"].erase("ln_abs_eps");
+  expect_error(bad, "parameters.ln_abs_eps");
+  // A file of before the logarithm has no space: eps.
+  fit::SmoothFitOptions eps_options;
+  eps_options.space = SmoothSpace::kEps;
+  nlohmann::json older = fit::FitSmooth(data, eps_options).model->ToJson();
+  older["parameters"].erase("space");
+  EXPECT_EQ(dynamic_cast<const SmoothModel&>(*ModelFromJson(older, "old.json")).space(),
+            SmoothSpace::kEps);
 }
 
 size_t FirstDifference(const std::string& a, const std::string& b) {

@@ -87,7 +87,10 @@ TEST(ColorSweep, FastPathsEqualTheScalarPathRelatively) {
     models.push_back(std::make_unique<SampleModel>(SampleModel::Kind::kEpsPchip, dataset));
     models.push_back(std::make_unique<SampleModel>(SampleModel::Kind::kEpsSpline, dataset));
     fit::SmoothFitOptions smooth;
-    models.push_back(std::move(fit::FitSmooth(dataset, smooth).model));
+    for (const SmoothSpace space : {SmoothSpace::kEps, SmoothSpace::kLogEps}) {
+      smooth.space = space;  // the logarithm's sums are ln|eps| and arg eps
+      models.push_back(std::move(fit::FitSmooth(dataset, smooth).model));
+    }
     // The physical fit refuses Querry's zinc (not passive between the samples): it takes
     // Werner's.
     fit::PhysicalFitOptions physical;

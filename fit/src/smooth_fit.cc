@@ -11,6 +11,7 @@
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/grid.h"
 #include "alloycolor/core/io.h"
+#include "alloycolor/core/units.h"
 #include "alloycolor/fit/gp_regression.h"
 #include "alloycolor/fit/smooth_costs.h"
 #include "alloycolor/model/optics.h"
@@ -18,13 +19,34 @@
 namespace alloycolor::fit {
 namespace {
 
-// The data on the grid: eps of every sample at every node.
+// The data on the grid: eps of every sample at every node, and the same in the space the
+// curves are fitted in with each value's weight.
 struct GridData {
   std::vector<double> grid_nm;
   std::vector<double> x;                              // per sample
   std::vector<std::vector<std::complex<double>>> eps;  // [sample][node]
   double x_lo = 0, x_hi = 1;
+  SmoothSpace space = SmoothSpace::kEps;
+  // [sample][node]: the two parts in `space` (part1 + i part2), and the weight of their
+  // squared misfit: 1 / |eps|^2 for eps (a relative error), 1 for the logarithm (relative
+  // already: d ln eps = d eps / eps).
+  std::vector<std::vector<std::complex<double>>> parts;
+  std::vector<std::vector<double>> weight;
 };
+
+GridData InSpace(GridData g, SmoothSpace space) {
+  g.space = space;
+  g.parts.assign(g.eps.size(), {});
+  g.weight.assign(g.eps.size(), {});
+  for (size_t i = 0; i < g.eps.size(); ++i) {
+    for (const std::complex<double> e : g.eps[i]) {
+      const std::array<double, 2> p = PartsFromEps(space, e);
+      g.parts[i].emplace_back(p[0], p[1]);
+      g.weight[i].push_back(space == SmoothSpace::kEps ? 1.0 / std::norm(e) : 1.0);
+    }
+  }
+  return g;
+}
 
 GridData PrepareData(const Dataset& dataset, const std::vector<double>& grid_nm) {
   GridData g;
@@ -46,7 +68,7 @@ GridData PrepareData(const Dataset& dataset, const std::vector<double>& grid_nm)
   }
   g.x_lo = *std::min_element(g.x.begin(), g.x.end());
   g.x_hi = *std::max_element(g.x.begin(), g.x.end());
-  return g;
+  return InSpace(std::move(g), SmoothSpace::kEps);
 }
 
 // The distinct compositions of the samples taking part, increasing.
@@ -74,8 +96,9 @@ std::vector<double> Knots(const std::vector<double>& compositions, int max_knots
 }
 
 struct Solution {
+  SmoothSpace space = SmoothSpace::kEps;
   std::vector<double> knots;
-  std::vector<std::vector<double>> eps1, eps2;      // [node][knot]
+  std::vector<std::vector<double>> part1, part2;    // [node][knot], in `space`
   std::vector<std::vector<double>> slope1, slope2;  // their PCHIP slopes (Finish)
   double final_cost = 0, data_sum_sq = 0;
   size_t data_residuals = 0;
@@ -85,13 +108,32 @@ struct Solution {
   GpHyper gp;  // the Gaussian-process form's hyperparameters (termination "gaussian process")
 };
 
-// Start values: at each knot the mean eps of the samples nearest to it (eps2 >= 0), or,
-// for a refit, the earlier model's eps there.
+// Passive: a knot's eps2 below 0 (only where strong smoothing pulls the curve below
+// near-zero data) is set to 0, or its arg eps held to [0, pi]; PCHIP then keeps eps2 >= 0
+// between the knots too. Then the knots' PCHIP slopes, once for every evaluation of the
+// solution.
+void Finish(Solution* s) {
+  const bool log = s->space == SmoothSpace::kLogEps;
+  for (auto& node : s->part2) {
+    for (double& v : node) v = log ? std::clamp(v, 0.0, kPi) : std::max(v, 0.0);
+  }
+  const size_t k = s->knots.size();
+  s->slope1.assign(s->part1.size(), std::vector<double>(k));
+  s->slope2.assign(s->part2.size(), std::vector<double>(k));
+  for (size_t j = 0; j < s->part1.size(); ++j) {
+    PchipSlopes(s->knots.data(), s->part1[j].data(), k, s->slope1[j].data());
+    PchipSlopes(s->knots.data(), s->part2[j].data(), k, s->slope2[j].data());
+  }
+}
+
+// Start values: at each knot the mean of the samples nearest to it (passive), or, for a
+// refit, the earlier model's eps there.
 void Start(const GridData& g, const std::vector<char>& in, const SmoothModel* start,
            Solution* s) {
   const size_t k = s->knots.size(), nodes = g.grid_nm.size();
-  s->eps1.assign(nodes, std::vector<double>(k, 0.0));
-  s->eps2.assign(nodes, std::vector<double>(k, 0.0));
+  s->space = g.space;
+  s->part1.assign(nodes, std::vector<double>(k, 0.0));
+  s->part2.assign(nodes, std::vector<double>(k, 0.0));
   if (start != nullptr) {
     std::vector<double> lambda(nodes);
     for (size_t j = 0; j < nodes; ++j) {
@@ -100,10 +142,12 @@ void Start(const GridData& g, const std::vector<char>& in, const SmoothModel* st
     for (size_t c = 0; c < k; ++c) {
       const auto eps = start->Permittivity(s->knots[c], lambda);
       for (size_t j = 0; j < nodes; ++j) {
-        s->eps1[j][c] = eps[j].real();
-        s->eps2[j][c] = std::max(0.0, eps[j].imag());
+        const std::array<double, 2> p = PartsFromEps(g.space, eps[j]);
+        s->part1[j][c] = p[0];
+        s->part2[j][c] = p[1];
       }
     }
+    Finish(s);
     return;
   }
   std::vector<int> count(k, 0);
@@ -116,16 +160,17 @@ void Start(const GridData& g, const std::vector<char>& in, const SmoothModel* st
                      s->knots.begin();
     ++count[c];
     for (size_t j = 0; j < nodes; ++j) {
-      s->eps1[j][c] += g.eps[i][j].real();
-      s->eps2[j][c] += std::max(0.0, g.eps[i][j].imag());
+      s->part1[j][c] += g.parts[i][j].real();
+      s->part2[j][c] += g.parts[i][j].imag();
     }
   }
   for (size_t c = 0; c < k; ++c) {
     for (size_t j = 0; j < nodes; ++j) {
-      s->eps1[j][c] /= std::max(count[c], 1);
-      s->eps2[j][c] /= std::max(count[c], 1);
+      s->part1[j][c] /= std::max(count[c], 1);
+      s->part2[j][c] /= std::max(count[c], 1);
     }
   }
+  Finish(s);
 }
 
 std::vector<double> KnotsU(const GridData& g, const std::vector<double>& knots) {
@@ -134,34 +179,18 @@ std::vector<double> KnotsU(const GridData& g, const std::vector<double>& knots) 
   return u;
 }
 
-// Passive: a knot's eps2 below 0 (only where strong smoothing pulls the curve below
-// near-zero data) is set to 0; PCHIP then keeps eps2 >= 0 between the knots too. Then the
-// knots' PCHIP slopes, once for every evaluation of the solution.
-void Finish(Solution* s) {
-  for (auto& node : s->eps2) {
-    for (double& e : node) e = std::max(e, 0.0);
-  }
-  const size_t k = s->knots.size();
-  s->slope1.assign(s->eps1.size(), std::vector<double>(k));
-  s->slope2.assign(s->eps2.size(), std::vector<double>(k));
-  for (size_t j = 0; j < s->eps1.size(); ++j) {
-    PchipSlopes(s->knots.data(), s->eps1[j].data(), k, s->slope1[j].data());
-    PchipSlopes(s->knots.data(), s->eps2[j].data(), k, s->slope2[j].data());
-  }
-}
-
 // Knots at the compositions themselves: every sample sits on a knot, the model there is
-// the knot value, and the cost is linear least squares in each node's eps1 and eps2
-// separately: per node, (A + mu R) v = b with A = B^T W B (W the samples' relative weights
-// 1 / |eps|^2, B the sample-to-knot selection), b = B^T W y, R the roughness rows' Gram
-// matrix (SmoothRoughnessResidual with weight 1) and mu the node's smoothing weight.
+// the knot value, and the cost is linear least squares in each node's two parts
+// separately: per node, (A + mu R) v = b with A = B^T W B (W the samples' weights,
+// GridData::weight; B the sample-to-knot selection), b = B^T W y, R the roughness rows'
+// Gram matrix (SmoothRoughnessResidual with weight 1) and mu the node's smoothing weight.
 struct LinearSystems {
   std::vector<double> knots;
   std::vector<size_t> knot_of;           // per sample taking part
   Eigen::MatrixXd rtr;                   // R
-  std::vector<Eigen::MatrixXd> a, b;     // [node]: k x k, k x 2 (eps1, eps2)
-  std::vector<Eigen::Vector2d> ywy;      // [node]: y^T W y of eps1, eps2
-  std::vector<double> mu_per_smoothing;  // [node]: mu / smoothing (count / sum |eps|^2)
+  std::vector<Eigen::MatrixXd> a, b;     // [node]: k x k, k x 2 (the two parts)
+  std::vector<Eigen::Vector2d> ywy;      // [node]: y^T W y of the two parts
+  std::vector<double> mu_per_smoothing;  // [node]: mu / smoothing (count / sum 1 / W)
   size_t samples = 0;
 };
 
@@ -194,14 +223,14 @@ LinearSystems AssembleAtCompositions(const GridData& g, const std::vector<char>&
     double sum_sq = 0;
     for (size_t i = 0; i < g.x.size(); ++i) {
       if (!in[i]) continue;
-      const std::complex<double> e = g.eps[i][j];
-      const double w = 1.0 / std::norm(e);
+      const std::complex<double> y = g.parts[i][j];
+      const double w = g.weight[i][j];
       const size_t c = ls.knot_of[i];
       a(c, c) += w;
-      b(c, 0) += w * e.real();
-      b(c, 1) += w * e.imag();
-      ywy += w * Eigen::Vector2d(e.real() * e.real(), e.imag() * e.imag());
-      sum_sq += std::norm(e);
+      b(c, 0) += w * y.real();
+      b(c, 1) += w * y.imag();
+      ywy += w * Eigen::Vector2d(y.real() * y.real(), y.imag() * y.imag());
+      sum_sq += 1 / w;
     }
     ls.a.push_back(std::move(a));
     ls.b.push_back(std::move(b));
@@ -219,17 +248,18 @@ Solution SolveAtCompositions(const GridData& g, const std::vector<char>& in,
                              std::vector<double> knots) {
   const LinearSystems ls = AssembleAtCompositions(g, in, std::move(knots));
   Solution s;
+  s.space = g.space;
   s.knots = ls.knots;
   const size_t nodes = g.grid_nm.size(), k = s.knots.size();
-  s.eps1.assign(nodes, std::vector<double>(k));
-  s.eps2.assign(nodes, std::vector<double>(k));
+  s.part1.assign(nodes, std::vector<double>(k));
+  s.part2.assign(nodes, std::vector<double>(k));
   double cost = 0;
   for (size_t j = 0; j < nodes; ++j) {
     const double mu = std::max(smoothing_per_node[j], 0.0) * ls.mu_per_smoothing[j];
     const Eigen::MatrixXd v = (ls.a[j] + mu * ls.rtr).ldlt().solve(ls.b[j]);
     for (size_t c = 0; c < k; ++c) {
-      s.eps1[j][c] = v(c, 0);
-      s.eps2[j][c] = v(c, 1);
+      s.part1[j][c] = v(c, 0);
+      s.part2[j][c] = v(c, 1);
     }
     cost += 0.5 * mu * (v.col(0).dot(ls.rtr * v.col(0)) + v.col(1).dot(ls.rtr * v.col(1)));
   }
@@ -238,7 +268,8 @@ Solution SolveAtCompositions(const GridData& g, const std::vector<char>& in,
     if (!in[i]) continue;
     for (size_t j = 0; j < nodes; ++j) {
       const std::complex<double> e = g.eps[i][j];
-      const std::complex<double> m(s.eps1[j][ls.knot_of[i]], s.eps2[j][ls.knot_of[i]]);
+      const size_t c = ls.knot_of[i];
+      const std::complex<double> m = EpsFromParts(s.space, s.part1[j][c], s.part2[j][c]);
       s.data_sum_sq += std::norm(m - e) / std::norm(e);
       s.data_residuals += 2;
     }
@@ -354,6 +385,14 @@ std::vector<size_t> MostProbableSmoothings(const EvidenceTerms& terms) {
   return best_choice;
 }
 
+// eps of the solution at composition x and node j.
+std::complex<double> EpsAt(const Solution& s, size_t j, double x) {
+  const size_t k = s.knots.size();
+  return EpsFromParts(s.space,
+                      HermiteAt(s.knots.data(), s.part1[j].data(), s.slope1[j].data(), k, x),
+                      HermiteAt(s.knots.data(), s.part2[j].data(), s.slope2[j].data(), k, x));
+}
+
 // Fewer knots than compositions: samples between knots make the cost nonlinear (the PCHIP
 // slopes depend on the knot values), and Ceres minimises it.
 Solution SolveCeres(const GridData& g, const std::vector<char>& in, double smoothing,
@@ -367,8 +406,8 @@ Solution SolveCeres(const GridData& g, const std::vector<char>& in, double smoot
   ceres::Problem problem;
   std::vector<ceres::ResidualBlockId> data_blocks;
   for (size_t j = 0; j < nodes; ++j) {
-    double* e1 = s.eps1[j].data();
-    double* e2 = s.eps2[j].data();
+    double* e1 = s.part1[j].data();
+    double* e2 = s.part2[j].data();
     problem.AddParameterBlock(e1, static_cast<int>(k));
     problem.AddParameterBlock(e2, static_cast<int>(k));
     double sum_sq = 0;
@@ -376,12 +415,13 @@ Solution SolveCeres(const GridData& g, const std::vector<char>& in, double smoot
     for (size_t i = 0; i < g.x.size(); ++i) {
       if (!in[i]) continue;
       data_blocks.push_back(problem.AddResidualBlock(
-          SmoothDataResidual::Create(s.knots, g.x[i], g.eps[i][j]), nullptr, e1, e2));
-      sum_sq += std::norm(g.eps[i][j]);
+          SmoothDataResidual::Create(s.knots, g.x[i], g.parts[i][j], std::sqrt(g.weight[i][j])),
+          nullptr, e1, e2));
+      sum_sq += 1 / g.weight[i][j];
       ++count;
     }
     if (smoothing > 0 && k >= 3) {
-      // Relative to the node's RMS |eps|, as the data residuals are.
+      // Relative to the node's RMS |eps| (in eps), as the data residuals are.
       const double weight = std::sqrt(smoothing * count / sum_sq);
       problem.AddResidualBlock(SmoothRoughnessResidual::Create(knots_u, weight), nullptr, e1, e2);
     }
@@ -408,12 +448,13 @@ Solution SolveCeres(const GridData& g, const std::vector<char>& in, double smoot
   s.converged = summary.termination_type == ceres::CONVERGENCE;
   s.termination = ceres::TerminationTypeToString(summary.termination_type);
   s.data_residuals = 2 * data_blocks.size();
-  ceres::Problem::EvaluateOptions eval;
-  eval.residual_blocks = data_blocks;
-  std::vector<double> residuals;
-  problem.Evaluate(eval, nullptr, &residuals, nullptr, nullptr);
-  for (double r : residuals) s.data_sum_sq += r * r;
   Finish(&s);
+  for (size_t i = 0; i < g.x.size(); ++i) {
+    if (!in[i]) continue;
+    for (size_t j = 0; j < nodes; ++j) {
+      s.data_sum_sq += std::norm(EpsAt(s, j, g.x[i]) - g.eps[i][j]) / std::norm(g.eps[i][j]);
+    }
+  }
   return s;
 }
 
@@ -427,15 +468,8 @@ Solution Solve(const GridData& g, const std::vector<char>& in, double smoothing,
   return SolveCeres(g, in, smoothing, options, std::move(knots));
 }
 
-// eps of the solution at composition x and node j.
-std::complex<double> EpsAt(const Solution& s, size_t j, double x) {
-  const size_t k = s.knots.size();
-  return {HermiteAt(s.knots.data(), s.eps1[j].data(), s.slope1[j].data(), k, x),
-          HermiteAt(s.knots.data(), s.eps2[j].data(), s.slope2[j].data(), k, x)};
-}
-
 bool AllFinite(const Solution& s) {
-  for (const auto* part : {&s.eps1, &s.eps2}) {
+  for (const auto* part : {&s.part1, &s.part2}) {
     for (const auto& node : *part) {
       for (double v : node) {
         if (!std::isfinite(v)) return false;
@@ -445,14 +479,15 @@ bool AllFinite(const Solution& s) {
   return true;
 }
 
-// The Gaussian-process form (fit/gp_regression.h): every node's eps1 and eps2, scaled by
-// the node's RMS |eps|, regressed on the scaled composition with one kernel, its length
-// and noise chosen by the samples' own leave-one-out; the posterior mean sampled at
-// kSmoothMaxKnots evenly spaced knots, between which PCHIP follows it (the mean is twice
+// The Gaussian-process form (fit/gp_regression.h): every node's two parts, scaled by the
+// node's RMS |eps| (in eps; 1 in the logarithm), regressed on the scaled composition with one
+// kernel, its length and noise chosen by the samples' own leave-one-out; the posterior mean sampled
+// at kSmoothMaxKnots evenly spaced knots, between which PCHIP follows it (the mean is twice
 // differentiable; eps2 held at 0 or above as in every form). Not converged (so not used)
 // with fewer than three compositions or a kernel that cannot be factorised.
 Solution SolveGp(const GridData& g, const std::vector<char>& in) {
   Solution s;
+  s.space = g.space;
   s.termination = "gaussian process";
   const std::vector<double> compositions = Compositions(g, in);
   if (compositions.size() < 3) return s;
@@ -467,14 +502,14 @@ Solution SolveGp(const GridData& g, const std::vector<char>& in) {
   }
   std::vector<double> scale(nodes, 0.0);
   for (size_t j = 0; j < nodes; ++j) {
-    for (size_t i : rows) scale[j] += std::norm(g.eps[i][j]);
+    for (size_t i : rows) scale[j] += 1 / g.weight[i][j];
     scale[j] = std::sqrt(scale[j] / rows.size());
   }
   Eigen::MatrixXd y(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(2 * nodes));
   for (size_t r = 0; r < rows.size(); ++r) {
     for (size_t j = 0; j < nodes; ++j) {
-      y(r, j) = g.eps[rows[r]][j].real() / scale[j];
-      y(r, nodes + j) = g.eps[rows[r]][j].imag() / scale[j];
+      y(r, j) = g.parts[rows[r]][j].real() / scale[j];
+      y(r, nodes + j) = g.parts[rows[r]][j].imag() / scale[j];
     }
   }
   const GpRegression gp = GpRegression::Chosen(u, y);
@@ -485,12 +520,12 @@ Solution SolveGp(const GridData& g, const std::vector<char>& in) {
     s.knots.push_back(c + 1 == kSmoothMaxKnots ? compositions.back() : lo + span * uq[c]);
   }
   const Eigen::MatrixXd mean = gp.Predict(uq);
-  s.eps1.assign(nodes, std::vector<double>(kSmoothMaxKnots));
-  s.eps2.assign(nodes, std::vector<double>(kSmoothMaxKnots));
+  s.part1.assign(nodes, std::vector<double>(kSmoothMaxKnots));
+  s.part2.assign(nodes, std::vector<double>(kSmoothMaxKnots));
   for (size_t j = 0; j < nodes; ++j) {
     for (int c = 0; c < kSmoothMaxKnots; ++c) {
-      s.eps1[j][c] = mean(c, static_cast<Eigen::Index>(j)) * scale[j];
-      s.eps2[j][c] = mean(c, static_cast<Eigen::Index>(nodes + j)) * scale[j];
+      s.part1[j][c] = mean(c, static_cast<Eigen::Index>(j)) * scale[j];
+      s.part2[j][c] = mean(c, static_cast<Eigen::Index>(nodes + j)) * scale[j];
     }
   }
   Finish(&s);
@@ -567,7 +602,9 @@ bool LeftOutErrors(const GridData& g, const std::vector<std::vector<double>>& fo
 
 }  // namespace
 
-constexpr double kGpMargin = 1.1;
+// A more flexible form (the Gaussian process) or the logarithm must beat the simpler one's
+// left-out error by this factor: with few folds leave-one-out flatters the more flexible.
+constexpr double kSimplerMargin = 1.1;
 // Cross-validation chooses with this many folds or more; below, the marginal likelihood.
 constexpr size_t kMinFolds = 3;
 
@@ -576,28 +613,33 @@ const std::vector<double>& SmoothingCandidates() {
   return kCandidates;
 }
 
-SmoothFitResult FitSmooth(const Dataset& dataset, const SmoothFitOptions& options) {
-  const std::vector<double> grid =
-      options.grid_nm.empty() ? DefaultGrid(dataset) : options.grid_nm;
-  if (grid.size() < 2) throw Error("smooth fit: the wavelength grid needs 2 points or more");
-  if (options.max_knots < 2 || options.max_knots > kSmoothMaxKnots) {
-    throw Error("smooth fit: the knots must number 2.." + std::to_string(kSmoothMaxKnots));
-  }
-  const GridData g = PrepareData(dataset, grid);
+namespace {
+
+// The fit in one space: the smoothing and form chosen there, and the left-out RMS
+// reflectance error of that choice over the interior compositions (HUGE_VAL where there
+// are none), by which the spaces are compared.
+struct SpaceFit {
+  SmoothFitResult result;  // what chose the smoothing and form; no model yet
+  Solution solution;
+  double smoothing = 0;
+  std::string chosen_by;
+  bool use_gp = false;
+  double score = HUGE_VAL;
+};
+
+SpaceFit FitInSpace(const GridData& g, const SmoothFitOptions& options) {
+  const std::string space = std::string(" (") + SmoothSpaceName(g.space) + ")";
   const std::vector<char> all(g.x.size(), 1);
   const std::vector<double> compositions = Compositions(g, all);
-  if (compositions.size() < 2) {
-    throw Error(dataset.manifest_path + ": the smooth fit needs at least two compositions");
-  }
-
-  SmoothFitResult result;
+  const std::vector<double>& grid = g.grid_nm;
+  SpaceFit f;
+  SmoothFitResult& result = f.result;
   double smoothing = options.smoothing;
   std::string chosen_by = "user";
   const auto folds = Folds(compositions);
   const bool cross_validate = smoothing < 0 && folds.size() >= kMinFolds;
   if (cross_validate) {
     chosen_by = "leave-one-composition-out cross-validation";
-    double best = HUGE_VAL;
     for (double candidate : SmoothingCandidates()) {
       SampleError total;
       LeftOutErrors(
@@ -612,11 +654,11 @@ SmoothFitResult FitSmooth(const Dataset& dataset, const SmoothFitOptions& option
       const double rms_r = std::sqrt(total.reflectance_sq / total.count);
       result.cross_validation.push_back({candidate, rms, rms_r});
       std::ostringstream msg;
-      msg << "cross-validation: smoothing " << candidate
+      msg << "cross-validation" << space << ": smoothing " << candidate
           << ", leave-one-out RMS error: relative eps " << rms << ", reflectance " << rms_r;
       Report(options.progress, msg.str());
-      if (rms_r < best) {
-        best = rms_r;
+      if (rms_r < f.score) {
+        f.score = rms_r;
         smoothing = candidate;
       }
     }
@@ -634,7 +676,7 @@ SmoothFitResult FitSmooth(const Dataset& dataset, const SmoothFitOptions& option
       result.smoothing_per_node.push_back(choice.empty() ? 0.0 : SmoothingCandidates()[choice[j]]);
     }
     std::ostringstream msg;
-    msg << "marginal likelihood, the most probable smoothing per wavelength:";
+    msg << "marginal likelihood" << space << ", the most probable smoothing per wavelength:";
     for (double candidate : SmoothingCandidates()) {
       const int nodes = static_cast<int>(std::count(result.smoothing_per_node.begin(),
                                                     result.smoothing_per_node.end(), candidate));
@@ -650,9 +692,25 @@ SmoothFitResult FitSmooth(const Dataset& dataset, const SmoothFitOptions& option
     smoothing = 0;
     chosen_by = "default: too few samples (or knots) to choose a smoothing";
   }
+  // Not cross-validated: the chosen smoothing scored on the same folds, for the choice of
+  // space.
+  if (!cross_validate && !folds.empty()) {
+    SampleError total;
+    const bool scored = LeftOutErrors(
+        g, folds,
+        [&](const std::vector<char>& in) {
+          if (result.smoothing_per_node.empty()) {
+            Solution s = Solve(g, in, smoothing, options);
+            s.converged = true;
+            return s;
+          }
+          return SolveAtCompositions(g, in, result.smoothing_per_node, Compositions(g, in));
+        },
+        &total);
+    if (scored && total.count > 0) f.score = std::sqrt(total.reflectance_sq / total.count);
+  }
   // The Gaussian-process form, scored on the same folds, replaces the PCHIP form where it
-  // beats the best smoothing by more than kGpMargin (the simpler form keeps ties: with
-  // few folds leave-one-out flatters the more flexible one).
+  // beats the best smoothing by more than kSimplerMargin.
   bool use_gp = false;
   if (cross_validate) {
     SampleError total;
@@ -661,34 +719,78 @@ SmoothFitResult FitSmooth(const Dataset& dataset, const SmoothFitOptions& option
     if (scored && total.count > 0) {
       result.gp_rms = std::sqrt(total.eps_sq / total.count);
       result.gp_rms_reflectance = std::sqrt(total.reflectance_sq / total.count);
-      double best = HUGE_VAL;
-      for (const auto& row : result.cross_validation) best = std::min(best, row.rms_reflectance);
-      use_gp = result.gp_rms_reflectance * kGpMargin < best;
+      use_gp = result.gp_rms_reflectance * kSimplerMargin < f.score;
       std::ostringstream msg;
-      msg << "cross-validation: gaussian process, leave-one-out RMS error: relative eps "
-          << result.gp_rms << ", reflectance " << result.gp_rms_reflectance
-          << (use_gp ? " (chosen)" : "");
+      msg << "cross-validation" << space
+          << ": gaussian process, leave-one-out RMS error: relative eps " << result.gp_rms
+          << ", reflectance " << result.gp_rms_reflectance << (use_gp ? " (chosen)" : "");
       Report(options.progress, msg.str());
     }
   }
   Solution s;
   if (use_gp) {
-    Report(options.progress, "fitting " + std::to_string(g.x.size()) + " samples x " +
-                                 std::to_string(grid.size()) +
-                                 " wavelengths, gaussian process across composition");
     s = SolveGp(g, all);
     smoothing = 0;
+    if (s.converged) f.score = result.gp_rms_reflectance;
   }
   if (!s.converged) {
     use_gp = false;
-    Report(options.progress,
-           "fitting " + std::to_string(g.x.size()) + " samples x " + std::to_string(grid.size()) +
-               " wavelengths, smoothing " + std::to_string(smoothing) +
-               (result.smoothing_per_node.empty() ? "" : " (median of the wavelengths')"));
     s = result.smoothing_per_node.empty()
             ? Solve(g, all, smoothing, options)
             : SolveAtCompositions(g, all, result.smoothing_per_node, compositions);
   }
+  f.solution = std::move(s);
+  f.smoothing = smoothing;
+  f.chosen_by = std::move(chosen_by);
+  f.use_gp = use_gp;
+  return f;
+}
+
+}  // namespace
+
+SmoothFitResult FitSmooth(const Dataset& dataset, const SmoothFitOptions& options) {
+  const std::vector<double> grid = options.grid_nm.empty() ? DefaultGrid(dataset) : options.grid_nm;
+  if (grid.size() < 2) throw Error("smooth fit: the wavelength grid needs 2 points or more");
+  if (options.max_knots < 2 || options.max_knots > kSmoothMaxKnots) {
+    throw Error("smooth fit: the knots must number 2.." + std::to_string(kSmoothMaxKnots));
+  }
+  const GridData g = PrepareData(dataset, grid);
+  const std::vector<char> all(g.x.size(), 1);
+  const std::vector<double> compositions = Compositions(g, all);
+  if (compositions.size() < 2) {
+    throw Error(dataset.manifest_path + ": the smooth fit needs at least two compositions");
+  }
+
+  // The space: eps, unless ln eps predicts the left-out compositions better by more than
+  // kSimplerMargin (or the caller fixed it).
+  const SmoothSpace first = options.space.value_or(SmoothSpace::kEps);
+  SpaceFit fit = FitInSpace(first == SmoothSpace::kEps ? g : InSpace(g, first), options);
+  std::string space_chosen_by = "given";
+  nlohmann::json space_scores = nlohmann::json::object();
+  if (!options.space && fit.score < HUGE_VAL) {
+    SpaceFit log = FitInSpace(InSpace(g, SmoothSpace::kLogEps), options);
+    space_scores = {{"eps", fit.score}, {"log_eps", log.score}};
+    const bool use_log = log.score * kSimplerMargin < fit.score;
+    std::ostringstream reason;
+    reason << "leave-one-out RMS reflectance error " << fit.score << " in eps, " << log.score
+           << " in ln eps: " << (use_log ? "ln eps" : "eps");
+    space_chosen_by = reason.str();
+    Report(options.progress, "space: " + space_chosen_by);
+    if (use_log) fit = std::move(log);
+  } else if (!options.space) {
+    space_chosen_by = "default: no interior composition to hold out";
+  }
+  SmoothFitResult result = std::move(fit.result);
+  Solution& s = fit.solution;
+  const double smoothing = fit.smoothing;
+  const bool use_gp = fit.use_gp;
+  Report(options.progress,
+         "fitted " + std::to_string(g.x.size()) + " samples x " + std::to_string(grid.size()) +
+             " wavelengths in " + (s.space == SmoothSpace::kLogEps ? "ln eps" : "eps") + ", " +
+             (use_gp ? std::string("gaussian process across composition")
+                     : "smoothing " + std::to_string(smoothing) +
+                           (result.smoothing_per_node.empty() ? ""
+                                                              : " (median of the wavelengths')")));
 
   FitSummary summary;
   summary.solver =
@@ -704,11 +806,14 @@ SmoothFitResult FitSmooth(const Dataset& dataset, const SmoothFitOptions& option
   summary.termination = s.termination;
   summary.rms_relative_eps =
       std::sqrt(s.data_sum_sq / std::max<double>(1.0, static_cast<double>(s.data_residuals)));
-  nlohmann::json& fit = summary.details;
-  fit["smoothing"] = smoothing;
-  fit["smoothing_chosen_by"] = chosen_by;
-  fit["knots"] = s.knots.size();
-  fit["data_residuals"] = s.data_residuals;
+  nlohmann::json& details = summary.details;
+  details["space"] = SmoothSpaceName(s.space);
+  details["space_chosen_by"] = space_chosen_by;
+  if (!space_scores.empty()) details["space_leave_one_out_rms_reflectance"] = space_scores;
+  details["smoothing"] = smoothing;
+  details["smoothing_chosen_by"] = fit.chosen_by;
+  details["knots"] = s.knots.size();
+  details["data_residuals"] = s.data_residuals;
   nlohmann::json per_sample = nlohmann::json::array();
   for (size_t i = 0; i < g.x.size(); ++i) {
     const SampleError e = ErrorOf(g, i, s);
@@ -716,22 +821,22 @@ SmoothFitResult FitSmooth(const Dataset& dataset, const SmoothFitOptions& option
                           {"file", dataset.samples[i].file},
                           {"rms_relative_eps", std::sqrt(e.eps_sq / e.count)}});
   }
-  fit["rms_per_sample"] = per_sample;
+  details["rms_per_sample"] = per_sample;
   nlohmann::json cv = nlohmann::json::array();
   for (const auto& row : result.cross_validation) {
     cv.push_back({{"smoothing", row.smoothing},
                   {"rms_relative_eps", row.rms},
                   {"rms_reflectance", row.rms_reflectance}});
   }
-  fit["cross_validation"] = cv;
+  details["cross_validation"] = cv;
   if (!result.evidence.empty()) {
     nlohmann::json evidence = nlohmann::json::array();
     for (const auto& row : result.evidence) {
       evidence.push_back({{"smoothing", row.smoothing}, {"wavelengths", row.nodes}});
     }
-    fit["marginal_likelihood"] = evidence;
+    details["marginal_likelihood"] = evidence;
   }
-  fit["form"] = use_gp ? "gaussian process" : "pchip";
+  details["form"] = use_gp ? "gaussian process" : "pchip";
   if (result.gp_rms_reflectance >= 0) {
     nlohmann::json gp = {{"rms_relative_eps", result.gp_rms},
                          {"rms_reflectance", result.gp_rms_reflectance}};
@@ -739,11 +844,11 @@ SmoothFitResult FitSmooth(const Dataset& dataset, const SmoothFitOptions& option
       gp["length"] = s.gp.length;
       gp["noise"] = s.gp.noise;
     }
-    fit["gaussian_process"] = gp;
+    details["gaussian_process"] = gp;
   }
 
-  result.model = std::make_unique<SmoothModel>(dataset, grid, std::move(s.knots),
-                                               std::move(s.eps1), std::move(s.eps2), smoothing);
+  result.model = std::make_unique<SmoothModel>(dataset, grid, std::move(s.knots), s.space,
+                                               std::move(s.part1), std::move(s.part2), smoothing);
   result.model->set_fit_summary(std::move(summary));
   if (!s.converged) {
     result.model->AddWarnings({"the fit stopped before convergence: " + s.termination});

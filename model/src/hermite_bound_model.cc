@@ -4,6 +4,7 @@
 #include <cstring>
 
 #include "alloycolor/core/simd.h"
+#include "alloycolor/model/smooth_model.h"
 
 namespace alloycolor {
 namespace {
@@ -32,12 +33,23 @@ void AtLeastZero(size_t m, double* __restrict v) {
 }  // namespace
 
 HermiteBoundModel::HermiteBoundModel(std::vector<double> lambda_nm, std::vector<double> knots_x,
-                                     std::vector<Knot> knots, bool linear, bool passive)
+                                     std::vector<Knot> knots, bool linear, Output output)
     : BoundModel(std::move(lambda_nm)),
       knots_x_(std::move(knots_x)),
       knots_(std::move(knots)),
       linear_(linear),
-      passive_(passive) {}
+      output_(output) {}
+
+void HermiteBoundModel::Finish(double* eps1, double* eps2) const {
+  const size_t m = lambda_nm().size();
+  if (output_ == Output::kPassive) AtLeastZero(m, eps2);
+  if (output_ != Output::kFromLog) return;
+  for (size_t i = 0; i < m; ++i) {
+    const std::complex<double> eps = EpsFromParts(SmoothSpace::kLogEps, eps1[i], eps2[i]);
+    eps1[i] = eps.real();
+    eps2[i] = eps.imag();
+  }
+}
 
 void HermiteBoundModel::Permittivity(double x, double* eps1, double* eps2) const {
   const size_t m = lambda_nm().size(), n = knots_x_.size();
@@ -50,11 +62,15 @@ void HermiteBoundModel::Permittivity(double x, double* eps1, double* eps2) const
     hi = std::clamp<size_t>(hi, 1, n - 1);
     const size_t lo = hi - 1;
     const double t = (x - knots_x_[lo]) / (knots_x_[hi] - knots_x_[lo]);
-    if (t == 0.0) return copy(knots_[lo]);
-    if (t == 1.0) return copy(knots_[hi]);
-    Lerp(m, knots_[lo].eps1.data(), knots_[hi].eps1.data(), t, eps1);
-    Lerp(m, knots_[lo].eps2.data(), knots_[hi].eps2.data(), t, eps2);
-    return;
+    if (t == 0.0) {
+      copy(knots_[lo]);
+    } else if (t == 1.0) {
+      copy(knots_[hi]);
+    } else {
+      Lerp(m, knots_[lo].eps1.data(), knots_[hi].eps1.data(), t, eps1);
+      Lerp(m, knots_[lo].eps2.data(), knots_[hi].eps2.data(), t, eps2);
+    }
+    return Finish(eps1, eps2);
   }
   // Beyond the ends: the line with the end slope (weights 1, dx on value and slope).
   if (x <= knots_x_.front() || x >= knots_x_.back()) {
@@ -65,8 +81,7 @@ void HermiteBoundModel::Permittivity(double x, double* eps1, double* eps2) const
     const double* s2 = k.slope2.data();
     WeightedSum(m, 1.0, k.eps1.data(), dx, s1, 0.0, k.eps1.data(), 0.0, s1, eps1);
     WeightedSum(m, 1.0, k.eps2.data(), dx, s2, 0.0, k.eps2.data(), 0.0, s2, eps2);
-    if (passive_) AtLeastZero(m, eps2);
-    return;
+    return Finish(eps1, eps2);
   }
   const size_t hi = std::upper_bound(knots_x_.begin(), knots_x_.end(), x) - knots_x_.begin();
   const size_t lo = hi - 1;
@@ -79,7 +94,7 @@ void HermiteBoundModel::Permittivity(double x, double* eps1, double* eps2) const
               b.slope1.data(), eps1);
   WeightedSum(m, w0, a.eps2.data(), w1, a.slope2.data(), w2, b.eps2.data(), w3,
               b.slope2.data(), eps2);
-  if (passive_) AtLeastZero(m, eps2);
+  Finish(eps1, eps2);
 }
 
 }  // namespace alloycolor

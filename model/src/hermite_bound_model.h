@@ -7,7 +7,9 @@
 // vectorises (simd.h).
 //
 // Equal to HermiteAt (interpolation.h) and to the linear interpolation of the samples
-// to rounding; beyond the first and last knot, the straight line with the end slope.
+// to rounding; beyond the first and last knot, the straight line with the end slope. The
+// smooth model's curves may run through ln eps (smooth_model.h): the two sums are then
+// ln|eps| and arg eps, and eps follows from them (EpsFromParts) wavelength by wavelength.
 #ifndef ALLOYCOLOR_MODEL_SRC_HERMITE_BOUND_MODEL_H_
 #define ALLOYCOLOR_MODEL_SRC_HERMITE_BOUND_MODEL_H_
 
@@ -24,18 +26,24 @@ class HermiteBoundModel : public BoundModel {
     std::vector<double> eps1, eps2;
     std::vector<double> slope1, slope2;  // d eps / dx (empty for `linear`)
   };
+  // What the sums are: eps; eps with eps2 held at 0 from below (a natural spline can
+  // undershoot between samples; the other schemes cannot); ln|eps| and arg eps.
+  enum class Output { kEps, kPassive, kFromLog };
   // `linear`: the straight line between neighbouring knots, evaluated as lo + (hi - lo) t
-  // exactly as the scalar path (no slopes). `passive`: eps2 held at 0 from below (a
-  // natural spline can undershoot between samples; the other schemes cannot).
+  // exactly as the scalar path (no slopes). Knot's eps1, eps2 hold ln|eps|, arg eps for
+  // kFromLog.
   HermiteBoundModel(std::vector<double> lambda_nm, std::vector<double> knots_x,
-                    std::vector<Knot> knots, bool linear, bool passive = false);
+                    std::vector<Knot> knots, bool linear, Output output = Output::kEps);
 
   void Permittivity(double x_atomic, double* eps1, double* eps2) const override;
 
  private:
   std::vector<double> knots_x_;
   std::vector<Knot> knots_;
-  bool linear_, passive_;
+  bool linear_;
+  Output output_;
+
+  void Finish(double* eps1, double* eps2) const;
 };
 
 }  // namespace alloycolor

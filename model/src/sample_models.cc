@@ -224,8 +224,10 @@ std::unique_ptr<BoundModel> SampleModel::Bind(const std::vector<double>& lambda_
         knots[j].slope2[i] = d2[j];
       }
     }
-    return std::make_unique<HermiteBoundModel>(lambda_nm, std::move(node_x), std::move(knots),
-                                               linear, kind_ == Kind::kEpsSpline);
+    return std::make_unique<HermiteBoundModel>(
+        lambda_nm, std::move(node_x), std::move(knots), linear,
+        kind_ == Kind::kEpsSpline ? HermiteBoundModel::Output::kPassive
+                                  : HermiteBoundModel::Output::kEps);
   }
   std::vector<BoundPaperModel::Invertible> invertible(m);
   for (size_t i = 0; i < m; ++i) {

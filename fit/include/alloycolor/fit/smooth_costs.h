@@ -16,32 +16,35 @@ namespace alloycolor::fit {
 // Stride of the dynamic cost functions: derivatives computed this many at a time.
 inline constexpr int kSmoothStride = 8;
 
-// Relative misfit of the model's eps at one sample and node: parameter blocks are the
-// node's eps1 and eps2 at the knots; residuals (eps - eps_i) / |eps_i|, real and imaginary.
+// Misfit of the model at one sample and node: parameter blocks are the node's two parts at
+// the knots (eps1 and eps2, or ln|eps| and arg eps: SmoothSpace); residuals (part -
+// part_i) * weight, for both parts. The weight 1 / |eps_i| makes the eps misfit relative;
+// in the logarithm the misfit is relative already (weight 1).
 struct SmoothDataResidual {
-  SmoothDataResidual(const std::vector<double>& knots, double x, std::complex<double> eps)
-      : knots(knots), x(x), eps1(eps.real()), eps2(eps.imag()), inv_abs(1.0 / std::abs(eps)) {}
+  SmoothDataResidual(const std::vector<double>& knots, double x, std::complex<double> parts,
+                     double weight)
+      : knots(knots), x(x), part1(parts.real()), part2(parts.imag()), weight(weight) {}
   template <typename T>
   bool operator()(T const* const* blocks, T* residual) const {
     const size_t k = knots.size();
     T slopes[kSmoothMaxKnots];
     PchipSlopes(knots.data(), blocks[0], k, slopes);
-    residual[0] = (HermiteAt(knots.data(), blocks[0], slopes, k, x) - T(eps1)) * T(inv_abs);
+    residual[0] = (HermiteAt(knots.data(), blocks[0], slopes, k, x) - T(part1)) * T(weight);
     PchipSlopes(knots.data(), blocks[1], k, slopes);
-    residual[1] = (HermiteAt(knots.data(), blocks[1], slopes, k, x) - T(eps2)) * T(inv_abs);
+    residual[1] = (HermiteAt(knots.data(), blocks[1], slopes, k, x) - T(part2)) * T(weight);
     return true;
   }
   static ceres::CostFunction* Create(const std::vector<double>& knots, double x,
-                                     std::complex<double> eps) {
+                                     std::complex<double> parts, double weight) {
     auto* cost = new ceres::DynamicAutoDiffCostFunction<SmoothDataResidual, kSmoothStride>(
-        new SmoothDataResidual(knots, x, eps));
+        new SmoothDataResidual(knots, x, parts, weight));
     cost->AddParameterBlock(static_cast<int>(knots.size()));
     cost->AddParameterBlock(static_cast<int>(knots.size()));
     cost->SetNumResiduals(2);
     return cost;
   }
   const std::vector<double> knots;
-  const double x, eps1, eps2, inv_abs;
+  const double x, part1, part2, weight;
 };
 
 // Roughness of one node's curves: sqrt(weight) times the second divided difference at

@@ -24,17 +24,27 @@
 // interior composition the evidence cannot tell noise from curvature: for one node it
 // does not depend on the smoothing at all).
 //
+// The space: the curves run through eps1 and eps2, or through ln|eps| and arg eps
+// (model/smooth_model.h: geometric interpolation, for samples whose |eps| differ by orders
+// of magnitude or of which one is not metallic). Both are fitted as above, each with its
+// own choice of smoothing and form, and ln eps is kept where its left-out RMS reflectance
+// error over the interior compositions (the cross-validation's, or with fewer folds that
+// of the chosen smoothing) is more than 10 % below that of eps; eps otherwise, and
+// without an interior composition. In ln eps the misfit is relative as it stands, and the
+// roughness penalty acts on ln|eps| and arg eps.
+//
 // The second form (fit/gp_regression.h): a Gaussian process across composition, one kernel
 // for all nodes, sampled at kSmoothMaxKnots even knots. The cross-validation's folds score
 // it (only where they choose the smoothing), and it replaces the PCHIP form where its
-// left-out reflectance error is more than 10 % below the best smoothing's: with dense samples of a smooth alloy series it uses them all (the
-// PCHIP form sees only each interval's neighbours); with few or scattered samples the
-// PCHIP form stays. A given smoothing keeps the PCHIP form.
+// left-out reflectance error is more than 10 % below the best smoothing's: with dense samples of a
+// smooth alloy series it uses them all (the PCHIP form sees only each interval's neighbours); with
+// few or scattered samples the PCHIP form stays. A given smoothing keeps the PCHIP form.
 #ifndef ALLOYCOLOR_FIT_SMOOTH_FIT_H_
 #define ALLOYCOLOR_FIT_SMOOTH_FIT_H_
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -49,6 +59,9 @@ struct SmoothFitOptions {
   double smoothing = -1;        // < 0: chosen by cross-validation
   int max_knots = 24;           // at most kSmoothMaxKnots
   int max_iterations = 50;
+  // The space of the curves; empty: eps, or ln eps where it predicts the left-out
+  // compositions better by more than 10 %.
+  std::optional<SmoothSpace> space;
   const SmoothModel* start = nullptr;  // refit: start from this model's eps at the knots
   ProgressCallback progress;           // may be empty
 };

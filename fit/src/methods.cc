@@ -717,6 +717,11 @@ std::unique_ptr<AlloyModel> BuildModel(const std::string& method, const Dataset&
   }
   if (method == kAutoMethod) return BuildAuto(dataset, settings);
   if (ChoosesDegree(method, settings)) {
+    if (settings.colorimeter == nullptr) {
+      throw Error(
+          "physical: the composition degree is chosen by the colour error of leave-one-out "
+          "folds, which needs a colorimeter (FitSettings::colorimeter); or give the degree");
+    }
     Scored r = RememberedDegreeChoice(dataset, settings);
     if (!r.model) throw Error(r.score.error);
     return std::move(r.model);

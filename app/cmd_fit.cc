@@ -32,6 +32,7 @@ struct FitOptions {
   std::string from;
   int degree = -1;
   double smoothing = -1;
+  std::string space;
   double lambda_from = 0, lambda_to = 0, lambda_step = 0;
   bool no_covariance = false;
   bool quiet = false;
@@ -129,6 +130,7 @@ void Run(const FitOptions& o) {
   fit::FitSettings settings;
   settings.degree = o.degree;
   settings.smoothing = o.smoothing;
+  settings.space = o.space;
   settings.terms = o.terms;
   settings.covariance = !o.no_covariance;
   settings.lambda_from_nm = o.lambda_from;
@@ -167,10 +169,11 @@ void Run(const FitOptions& o) {
       std::fprintf(stderr, "alloycolor: auto chose %s\n", stats.selection.reason.c_str());
     }
     if (stats.present()) {
-      const std::string shape =
-          model->method() == "smooth"
-              ? "smoothing " + FormatNumber(stats.details.value("smoothing", 0.0))
-              : "degree " + std::to_string(stats.degree);
+      const std::string shape = model->method() == "smooth"
+                                    ? stats.details.value("space", std::string("eps")) +
+                                          ", smoothing " +
+                                          FormatNumber(stats.details.value("smoothing", 0.0))
+                                    : "degree " + std::to_string(stats.degree);
       std::fprintf(stderr,
                    "alloycolor: %s fit: %s, final cost %.6g, %d iterations, %s, "
                    "RMS relative eps error %.3g, %.3f s\n",
@@ -191,6 +194,7 @@ void RegisterFit(CLI::App& app) {
       "fit",
       "Fit a model to all samples of a data set and write it as a versioned JSON model "
       "file (docs/model-format.md). smooth: Ceres fit, at every wavelength, of eps1 and eps2 "
+      "(or ln|eps| and arg eps, where leave-one-out prefers them) "
       "as monotone cubic (PCHIP) curves of composition through knots, a regression with "
       "its smoothing chosen by leave-one-composition-out cross-validation (with fewer than "
       "five compositions by the marginal likelihood, per wavelength; tau and m* "
@@ -228,6 +232,13 @@ void RegisterFit(CLI::App& app) {
                   "to 1e6 (default: chosen by leave-one-composition-out cross-validation, or with "
                   "fewer than five compositions by the marginal likelihood)")
       ->check(NumberIn(0, 1e6));
+  cmd->add_option("--space", o->space,
+                  "smooth: what its curves across composition describe: eps (eps1, eps2) or "
+                  "log_eps (ln|eps| and arg eps: geometric interpolation, for samples whose "
+                  "|eps| differ by orders of magnitude or one of which is not metallic) "
+                  "(default: log_eps where its leave-one-out error is more than 10 % below "
+                  "eps's, else eps)")
+      ->check(CLI::IsMember({"eps", "log_eps"}));
   cmd->add_option("--lambda-from", o->lambda_from,
                   "smooth, physical: first wavelength of the fit grid, nm (physical default: "
                   "the common range within 300-1000 nm, or all of it for infrared data)")

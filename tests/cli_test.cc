@@ -174,6 +174,25 @@ TEST_F(BadInput, CompositionsAndOptions) {
   ExpectCleanError({"color", "--data", "Au-Ag", "--x", "0.5", "--method", "magic"}, {"magic"});
   ExpectCleanError({"color", "--bogus"}, {"--bogus"});
   ExpectCleanError({"color"}, {"--model"});
+  ExpectCleanError({"fit", "--data", "Au-Ag", "--method", "smooth", "--space", "magic", "--out",
+                    dir_ + "/m.json"},
+                   {"--space", "magic"});
+  EXPECT_FALSE(std::filesystem::exists(dir_ + "/m.json"));
+}
+
+// --space fixes the space of the smooth model's curves, and the file says which.
+TEST(Cli, FitSmoothInTheSpaceGiven) {
+  const std::string dir = MakeTempDir();
+  for (const char* space : {"eps", "log_eps"}) {
+    const std::string out = dir + "/" + space + ".json";
+    const RunResult r = RunProgram({"fit", "--data", "Au-Ag", "--method", "smooth", "--space",
+                                    space, "--quiet", "--out", out});
+    ASSERT_EQ(r.status, 0) << r.err;
+    std::ifstream in(out);
+    const nlohmann::json model = nlohmann::json::parse(in);
+    EXPECT_EQ(model["parameters"]["space"], space);
+    EXPECT_EQ(model["fit"]["space_chosen_by"], "given");
+  }
 }
 
 TEST_F(BadInput, ModelFilesAndRefit) {

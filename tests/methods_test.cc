@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <complex>
+#include <map>
 #include <string>
 
 #include "alloycolor/color/colorimetry.h"
@@ -19,6 +20,7 @@
 #include "alloycolor/core/grid.h"
 #include "alloycolor/core/io.h"
 #include "alloycolor/model/registry.h"
+#include "alloycolor/model/smooth_model.h"
 #include "test_util.h"
 
 namespace alloycolor {
@@ -65,6 +67,24 @@ TEST(EveryMethod, StaysPassiveAndBoundedOnEveryBundledSet) {
       }
     }
   }
+}
+
+// Three compositions of a series whose ln eps is linear in composition: the smooth model
+// chooses ln eps by its one fold (the middle from the ends), and auto's fold of it, which
+// has no interior composition to choose by, scores that space too (before, it scored the
+// eps line, the same as eps-pchip's, and auto took eps-pchip).
+TEST(AutoMethod, ScoresTheSmoothModelInTheSpaceItDelivers) {
+  const color::Colorimeter colorimeter = color::Colorimeter::Load(DataDir(), "D65", 2);
+  const Dataset data =
+      LoadDataset(testing::WriteSyntheticDataset({0.0, 0.5, 1.0}, testing::Geometric));
+  fit::FitSettings settings;
+  settings.colorimeter = &colorimeter;
+  const auto model = fit::BuildModel("auto", data, settings);
+  ASSERT_EQ(model->method(), "smooth");
+  EXPECT_EQ(dynamic_cast<const SmoothModel&>(*model).space(), SmoothSpace::kLogEps);
+  std::map<std::string, double> mean;
+  for (const MethodScore& m : model->fit_summary().selection.scores) mean[m.method] = m.mean;
+  EXPECT_LT(mean["smooth"], 0.01 * mean["eps-pchip"]) << mean["smooth"] << " " << mean["eps-pchip"];
 }
 
 // The physical model's degree is chosen by colour: without a colorimeter it says so.

@@ -27,34 +27,11 @@ namespace alloycolor {
 namespace {
 
 using testing::DataDir;
+using testing::Geometric;
+using testing::LinearEps;
 using testing::MakeTempDir;
+using testing::WriteSyntheticDataset;
 using testing::WriteText;
-
-// A data set of the given compositions whose eps at (x, lambda) is truth(x, lambda).
-std::string WriteSyntheticDataset(
-    const std::vector<double>& xs,
-    const std::function<std::complex<double>(double, double)>& truth) {
-  const std::string dir = MakeTempDir();
-  std::string samples;
-  for (size_t i = 0; i < xs.size(); ++i) {
-    std::vector<double> l, n, k;
-    for (double lambda = 380; lambda <= 800; lambda += 5) {
-      const std::complex<double> e = truth(xs[i], lambda);
-      const Complex<double> nk = IndexFromPermittivity(Complex<double>{e.real(), e.imag()});
-      l.push_back(lambda);
-      n.push_back(nk.re);
-      k.push_back(nk.im);
-    }
-    const std::string file = "s" + std::to_string(i) + ".csv";
-    WriteText(dir + "/" + file, NkCsvText(l, n, k));
-    samples += (i ? "," : "") + std::string("{\"x\": ") + std::to_string(xs[i]) +
-               ", \"file\": \"" + file + "\"}";
-  }
-  WriteText(dir + "/dataset.json",
-            "{\"system\": {\"a\": \"Au\", \"b\": \"Ag\"}, \"composition\": \"atomic_fraction_a\", "
-            "\"samples\": [" + samples + "]}");
-  return dir;
-}
 
 TEST(SmoothCosts, DataResidualJacobianMatchesFiniteDifferences) {
   const std::vector<double> knots = {0.0, 0.3, 0.55, 1.0};
@@ -419,20 +396,6 @@ TEST(SmoothSpaces, PartsOfEpsByHand) {
   EXPECT_NEAR(held.real(), -1.0, 1e-15);
   EXPECT_GE(held.imag(), 0.0);
   EXPECT_EQ(EpsFromParts(SmoothSpace::kLogEps, 0.0, -1.0), std::complex<double>(1.0, 0.0));
-}
-
-// A dielectric (x = 0) and a metal (x = 1) with ln eps linear in composition between them:
-// eps the geometric interpolation, arg eps running from near 0 to near pi.
-std::complex<double> Geometric(double x, double lambda) {
-  const std::complex<double> metal(-20.0 - 0.02 * (lambda - 500), 1.5 + 0.002 * lambda);
-  const std::complex<double> dielectric(4.0 + 0.001 * lambda, 0.3);
-  return std::exp((1 - x) * std::log(dielectric) + x * std::log(metal));
-}
-
-// Two metals with eps linear in composition between them.
-std::complex<double> LinearEps(double x, double lambda) {
-  return (1 - x) * std::complex<double>(-20.0 - 0.02 * (lambda - 500), 1.5) +
-         x * std::complex<double>(-5.0, 5.0 + 0.001 * lambda);
 }
 
 TEST(SmoothFit, WhereLnEpsIsLinearInCompositionTheLogarithmIsChosenAndExact) {

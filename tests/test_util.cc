@@ -10,6 +10,9 @@
 #include <random>
 #include <stdexcept>
 
+#include "alloycolor/core/io.h"
+#include "alloycolor/model/optics.h"
+
 namespace alloycolor::testing {
 namespace {
 
@@ -72,6 +75,43 @@ int CountLines(const std::string& text) {
   for (char c : text) lines += c == '\n';
   if (!text.empty() && text.back() != '\n') ++lines;
   return lines;
+}
+
+std::string WriteSyntheticDataset(
+    const std::vector<double>& xs,
+    const std::function<std::complex<double>(double, double)>& truth) {
+  const std::string dir = MakeTempDir();
+  std::string samples;
+  for (size_t i = 0; i < xs.size(); ++i) {
+    std::vector<double> l, n, k;
+    for (double lambda = 380; lambda <= 800; lambda += 5) {
+      const std::complex<double> e = truth(xs[i], lambda);
+      const Complex<double> nk = IndexFromPermittivity(Complex<double>{e.real(), e.imag()});
+      l.push_back(lambda);
+      n.push_back(nk.re);
+      k.push_back(nk.im);
+    }
+    const std::string file = "s" + std::to_string(i) + ".csv";
+    WriteText(dir + "/" + file, NkCsvText(l, n, k));
+    samples += (i ? "," : "") + std::string("{\"x\": ") + std::to_string(xs[i]) + ", \"file\": \"" +
+               file + "\"}";
+  }
+  WriteText(dir + "/dataset.json",
+            "{\"system\": {\"a\": \"Au\", \"b\": \"Ag\"}, \"composition\": \"atomic_fraction_a\", "
+            "\"samples\": [" +
+                samples + "]}");
+  return dir;
+}
+
+std::complex<double> Geometric(double x, double lambda_nm) {
+  const std::complex<double> metal(-20.0 - 0.02 * (lambda_nm - 500), 1.5 + 0.002 * lambda_nm);
+  const std::complex<double> dielectric(4.0 + 0.001 * lambda_nm, 0.3);
+  return std::exp((1 - x) * std::log(dielectric) + x * std::log(metal));
+}
+
+std::complex<double> LinearEps(double x, double lambda_nm) {
+  return (1 - x) * std::complex<double>(-20.0 - 0.02 * (lambda_nm - 500), 1.5) +
+         x * std::complex<double>(-5.0, 5.0 + 0.001 * lambda_nm);
 }
 
 }  // namespace alloycolor::testing

@@ -2,6 +2,8 @@
 #ifndef ALLOYCOLOR_TESTS_TEST_UTIL_H_
 #define ALLOYCOLOR_TESTS_TEST_UTIL_H_
 
+#include <complex>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -28,6 +30,19 @@ std::string TestsDir();
 
 // Counts lines in text.
 int CountLines(const std::string& text);
+
+// A data set (a folder with dataset.json, system Au-Ag, atomic fractions) of the given
+// compositions whose eps at (x, lambda) is truth(x, lambda), as n, k CSV files on 380-800 nm
+// every 5 nm.
+std::string WriteSyntheticDataset(const std::vector<double>& xs,
+                                  const std::function<std::complex<double>(double, double)>& truth);
+
+// A dielectric (x = 0) and a metal (x = 1) with ln eps linear in composition between them:
+// eps the geometric interpolation, arg eps running from near 0 to near pi.
+std::complex<double> Geometric(double x, double lambda_nm);
+
+// Two metals with eps linear in composition between them.
+std::complex<double> LinearEps(double x, double lambda_nm);
 
 }  // namespace alloycolor::testing
 

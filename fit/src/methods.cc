@@ -51,6 +51,13 @@ std::unique_ptr<AlloyModel> BuildSmooth(const Dataset& dataset, const FitSetting
     }
     options.smoothing = settings.smoothing;
   }
+  if (settings.space == "eps") {
+    options.space = SmoothSpace::kEps;
+  } else if (settings.space == "log_eps") {
+    options.space = SmoothSpace::kLogEps;
+  } else if (!settings.space.empty()) {
+    throw Error("--space: '" + settings.space + "' is none of eps, log_eps");
+  }
   options.progress = settings.progress;
   if (settings.lambda_from_nm != 0 || settings.lambda_to_nm != 0) {
     const double step = settings.lambda_step_nm > 0 ? settings.lambda_step_nm : 5.0;
@@ -153,7 +160,9 @@ struct Fold {
 // The method built without each of ErrorFolds in turn, in parallel. The physical fit of a
 // fold starts from `model` (warm): the same ends, so the same interband terms, which its
 // fits of the end samples chose, and coefficients near the fold's; it then converges on
-// the fold's own data. (`validate` refits each of its splits from scratch.)
+// the fold's own data. (`validate` refits each of its splits from scratch.) A smooth fold
+// with no interior composition (three compositions in all) cannot choose the space of its
+// curves and takes the one `model` has, so that it scores the model delivered.
 std::vector<Fold> FitFolds(const std::string& method, const Dataset& dataset,
                            const FitSettings& settings, const AlloyModel& model) {
   const std::vector<double> xs = ErrorFolds(dataset);
@@ -167,8 +176,13 @@ std::vector<Fold> FitFolds(const std::string& method, const Dataset& dataset,
     Fold& f = folds[k];
     f.x = xs[k];
     const Dataset training = WithoutSamples(dataset, {f.x});
+    FitSettings fold = inner;
+    if (const auto* smooth = dynamic_cast<const SmoothModel*>(&model);
+        smooth != nullptr && fold.space.empty() && DistinctCompositions(training).size() < 3) {
+      fold.space = SmoothSpaceName(smooth->space());
+    }
     try {
-      f.model = BuildModel(method, training, inner);
+      f.model = BuildModel(method, training, fold);
     } catch (const Error& e) {
       f.error = e.what();
       return;

@@ -259,7 +259,7 @@ def _optional(value, default):
 
 
 def fit(dataset: Union[Dataset, str], method: str = "smooth", *, degree: Optional[int] = None,
-        smoothing: Optional[float] = None, terms: str = "auto",
+        smoothing: Optional[float] = None, space: Optional[str] = None, terms: str = "auto",
         lambda_range_nm: Optional[Sequence[float]] = None, covariance: bool = True,
         progress: Optional[Callable[[str], None]] = None) -> Model:
     """Fits ``method`` (see :func:`methods`) to a data set, as ``alloycolor fit`` does.
@@ -267,7 +267,9 @@ def fit(dataset: Union[Dataset, str], method: str = "smooth", *, degree: Optiona
     degree: composition degree (physical; default 2, or 1 where leave-one-out finds it clearly better; lowered where the fit leaves physics);
     smoothing: roughness penalty across composition (smooth; default: chosen
     by leave-one-composition-out, or with fewer than five compositions by the marginal
-    likelihood per wavelength; 0 interpolates); terms: interband terms (physical);
+    likelihood per wavelength; 0 interpolates); space: what the smooth model's curves
+    describe, "eps" or "log_eps" (ln|eps| and arg eps; default: log_eps where its
+    leave-one-out error is more than 10 % below eps's); terms: interband terms (physical);
     lambda_range_nm: (from, to, step) of the fit grid; covariance: compute the physical
     fit's parameter covariance; progress: called with one-line messages. Every method
     fitted to three compositions or more carries a cross-validated uncertainty."""
@@ -275,7 +277,8 @@ def fit(dataset: Union[Dataset, str], method: str = "smooth", *, degree: Optiona
         dataset = Dataset(dataset)
     lo, hi, step = (0.0, 0.0, 0.0) if lambda_range_nm is None else map(float, lambda_range_nm)
     return Model(_core._fit(dataset._core, method, _optional(degree, -1),
-                            float(_optional(smoothing, -1.0)), terms, lo, hi, step,
+                            float(_optional(smoothing, -1.0)), _optional(space, ""), terms,
+                            lo, hi, step,
                             bool(covariance), progress))
 
 

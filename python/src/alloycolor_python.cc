@@ -334,28 +334,30 @@ PYBIND11_MODULE(_alloycolor, m) {
         return WithoutSamples(d, exclude_x);
       });
 
-  m.def("_fit",
-        [](const Dataset& dataset, const std::string& method, int degree, double smoothing, const std::string& terms, double lambda_from_nm, double lambda_to_nm,
-           double lambda_step_nm, bool covariance, const py::object& progress) {
-          RequireMethod(method);
-          fit::FitSettings settings;
-          settings.degree = degree;
-          settings.smoothing = smoothing;
-          settings.terms = terms;
-          settings.lambda_from_nm = lambda_from_nm;
-          settings.lambda_to_nm = lambda_to_nm;
-          settings.lambda_step_nm = lambda_step_nm;
-          settings.covariance = covariance;
-          settings.progress = PythonProgress(progress);
-          // As `alloycolor fit`: auto and the sigma calibration score colour under D65, 2 degrees.
-          settings.colorimeter = &GetColorimeter("D65", 2);
-          std::unique_ptr<AlloyModel> model;
-          {
-            py::gil_scoped_release release;
-            model = fit::BuildModel(method, dataset, settings);
-          }
-          return std::shared_ptr<AlloyModel>(std::move(model));
-        });
+  m.def("_fit", [](const Dataset& dataset, const std::string& method, int degree, double smoothing,
+                   const std::string& space, const std::string& terms, double lambda_from_nm,
+                   double lambda_to_nm, double lambda_step_nm, bool covariance,
+                   const py::object& progress) {
+    RequireMethod(method);
+    fit::FitSettings settings;
+    settings.degree = degree;
+    settings.smoothing = smoothing;
+    settings.space = space;
+    settings.terms = terms;
+    settings.lambda_from_nm = lambda_from_nm;
+    settings.lambda_to_nm = lambda_to_nm;
+    settings.lambda_step_nm = lambda_step_nm;
+    settings.covariance = covariance;
+    settings.progress = PythonProgress(progress);
+    // As `alloycolor fit`: auto and the sigma calibration score colour under D65, 2 degrees.
+    settings.colorimeter = &GetColorimeter("D65", 2);
+    std::unique_ptr<AlloyModel> model;
+    {
+      py::gil_scoped_release release;
+      model = fit::BuildModel(method, dataset, settings);
+    }
+    return std::shared_ptr<AlloyModel>(std::move(model));
+  });
 
   m.def("_load_model",
         [](const std::string& path) { return std::shared_ptr<AlloyModel>(ReadModelFile(path)); });

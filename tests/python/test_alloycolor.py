@@ -145,6 +145,18 @@ def test_smooth_fit_save_and_colour_equal_command_line(binary, au_ag, tmp_path):
     np.testing.assert_allclose([r["XYZ"] for r in cli2["results"]], c["xyz"], atol=1e-9)
 
 
+def test_smooth_fit_in_the_space_given_equals_command_line(binary, au_ag, tmp_path):
+    cli_model = tmp_path / "log.json"
+    subprocess.run([binary, "fit", "--data", "Au-Ag", "--method", "smooth", "--space", "log_eps",
+                    "--out", str(cli_model), "--quiet"], check=True)
+    model = ac.fit(au_ag, "smooth", space="log_eps")
+    lam = np.linspace(380, 780, 41)
+    np.testing.assert_allclose(ac.load_model(cli_model).nk([0.3, 0.85], lam),
+                               model.nk([0.3, 0.85], lam), atol=1e-9)
+    with pytest.raises(ac.Error, match="--space"):
+        ac.fit(au_ag, "smooth", space="magic")
+
+
 def assert_same(a, b, path="report"):
     """Equal structure; numbers equal to 1e-9 relative."""
     if isinstance(a, dict):

@@ -30,6 +30,10 @@ std::shared_ptr<FitMemo> MakeFitMemo();
 struct FitSettings {
   int degree = -1;      // physical: composition degree; < 0: the method's default
   double smoothing = -1;  // smooth: roughness penalty across composition; -1: cross-validated
+  // smooth: the space of its curves, "eps" or "log_eps"; empty: chosen by its leave-one-out
+  // (a fold of the prediction error or of auto that has no interior composition to choose
+  // by takes the space of the model it scores).
+  std::string space;
   std::string terms = "auto";  // physical: interband terms
   // Fit grid: both 0 for the method's default range; step 0 for its default step.
   double lambda_from_nm = 0, lambda_to_nm = 0, lambda_step_nm = 0;

@@ -236,7 +236,7 @@ void RegisterFit(CLI::App& app) {
                   "smooth: what its curves across composition describe: eps (eps1, eps2) or "
                   "log_eps (ln|eps| and arg eps: geometric interpolation, for samples whose "
                   "|eps| differ by orders of magnitude or one of which is not metallic) "
-                  "(default: log_eps where its leave-one-out error is more than 10 % below "
+                  "(default: log_eps where its leave-one-out error is at least a third below "
                   "eps's, else eps)")
       ->check(CLI::IsMember({"eps", "log_eps"}));
   cmd->add_option("--lambda-from", o->lambda_from,

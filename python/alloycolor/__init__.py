@@ -269,7 +269,7 @@ def fit(dataset: Union[Dataset, str], method: str = "smooth", *, degree: Optiona
     by leave-one-composition-out, or with fewer than five compositions by the marginal
     likelihood per wavelength; 0 interpolates); space: what the smooth model's curves
     describe, "eps" or "log_eps" (ln|eps| and arg eps; default: log_eps where its
-    leave-one-out error is more than 10 % below eps's); terms: interband terms (physical);
+    leave-one-out error is at least a third below eps's); terms: interband terms (physical);
     lambda_range_nm: (from, to, step) of the fit grid; covariance: compute the physical
     fit's parameter covariance; progress: called with one-line messages. Every method
     fitted to three compositions or more carries a cross-validated uncertainty."""

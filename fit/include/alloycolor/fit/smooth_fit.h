@@ -29,7 +29,7 @@
 // of magnitude or of which one is not metallic). Both are fitted as above, each with its
 // own choice of smoothing and form, and ln eps is kept where its left-out RMS reflectance
 // error over the interior compositions (the cross-validation's, or with fewer folds that
-// of the chosen smoothing) is more than 10 % below that of eps; eps otherwise, and
+// of the chosen smoothing) is at least a third below that of eps; eps otherwise, and
 // without an interior composition. In ln eps the misfit is relative as it stands, and the
 // roughness penalty acts on ln|eps| and arg eps.
 //
@@ -60,7 +60,7 @@ struct SmoothFitOptions {
   int max_knots = 24;           // at most kSmoothMaxKnots
   int max_iterations = 50;
   // The space of the curves; empty: eps, or ln eps where it predicts the left-out
-  // compositions better by more than 10 %.
+  // compositions better by a third.
   std::optional<SmoothSpace> space;
   const SmoothModel* start = nullptr;  // refit: start from this model's eps at the knots
   ProgressCallback progress;           // may be empty

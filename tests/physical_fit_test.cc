@@ -204,34 +204,18 @@ struct Truth {
 };
 
 std::string WriteSyntheticDataset(const Truth& truth, const std::vector<double>& xs, double noise) {
-  const std::string dir = MakeTempDir();
   std::mt19937 rng(20261122);
   std::normal_distribution<double> normal(0.0, noise);
-  std::string samples;
-  for (size_t i = 0; i < xs.size(); ++i) {
-    const std::vector<double> v = truth.ValuesAt(xs[i]);
-    std::vector<double> l, n, k;
-    for (double lambda = 300; lambda <= 1000 + 1e-9; lambda += 5) {
-      Complex<double> eps =
-          PhysicalPermittivity(truth.layout, v.data(), OmegaEvFromLambdaNm(lambda));
-      EXPECT_GT(eps.im, 0.01) << "the truth absorbs at x = " << xs[i] << ", " << lambda << " nm";
-      const double scale = std::sqrt(Norm2(eps));
-      eps = {eps.re + scale * normal(rng), eps.im + scale * normal(rng)};
-      const Complex<double> nk = IndexFromPermittivity(eps);
-      l.push_back(lambda);
-      n.push_back(nk.re);
-      k.push_back(nk.im);
-    }
-    const std::string file = "s" + std::to_string(i) + ".csv";
-    WriteText(dir + "/" + file, NkCsvText(l, n, k));
-    samples += (i ? "," : "") + std::string("{\"x\": ") + std::to_string(xs[i]) + ", \"file\": \"" +
-               file + "\"}";
-  }
-  WriteText(dir + "/dataset.json",
-            "{\"system\": {\"a\": \"Au\", \"b\": \"Ag\"}, \"composition\": \"atomic_fraction_a\", "
-            "\"samples\": [" +
-                samples + "]}");
-  return dir;
+  const auto eps = [&](double x, double lambda) {
+    const std::vector<double> v = truth.ValuesAt(x);
+    const Complex<double> e =
+        PhysicalPermittivity(truth.layout, v.data(), OmegaEvFromLambdaNm(lambda));
+    EXPECT_GT(e.im, 0.01) << "the truth absorbs at x = " << x << ", " << lambda << " nm";
+    const double scale = std::sqrt(Norm2(e));
+    const double d1 = scale * normal(rng), d2 = scale * normal(rng);  // in this order
+    return std::complex<double>(e.re + d1, e.im + d2);
+  };
+  return testing::WriteSyntheticDataset(xs, eps, 300, 1000);
 }
 
 TEST(PhysicalFit, RecoversKnownParametersWithinTheirUncertainty) {

@@ -77,14 +77,14 @@ int CountLines(const std::string& text) {
   return lines;
 }
 
-std::string WriteSyntheticDataset(
-    const std::vector<double>& xs,
-    const std::function<std::complex<double>(double, double)>& truth) {
+std::string WriteSyntheticDataset(const std::vector<double>& xs,
+                                  const std::function<std::complex<double>(double, double)>& truth,
+                                  double first_nm, double last_nm) {
   const std::string dir = MakeTempDir();
   std::string samples;
   for (size_t i = 0; i < xs.size(); ++i) {
     std::vector<double> l, n, k;
-    for (double lambda = 380; lambda <= 800; lambda += 5) {
+    for (double lambda = first_nm; lambda <= last_nm + 1e-9; lambda += 5) {
       const std::complex<double> e = truth(xs[i], lambda);
       const Complex<double> nk = IndexFromPermittivity(Complex<double>{e.real(), e.imag()});
       l.push_back(lambda);

@@ -32,10 +32,11 @@ std::string TestsDir();
 int CountLines(const std::string& text);
 
 // A data set (a folder with dataset.json, system Au-Ag, atomic fractions) of the given
-// compositions whose eps at (x, lambda) is truth(x, lambda), as n, k CSV files on 380-800 nm
-// every 5 nm.
+// compositions whose eps at (x, lambda) is truth(x, lambda), as n, k CSV files every 5 nm
+// from first_nm to last_nm.
 std::string WriteSyntheticDataset(const std::vector<double>& xs,
-                                  const std::function<std::complex<double>(double, double)>& truth);
+                                  const std::function<std::complex<double>(double, double)>& truth,
+                                  double first_nm = 380, double last_nm = 800);
 
 // A dielectric (x = 0) and a metal (x = 1) with ln eps linear in composition between them:
 // eps the geometric interpolation, arg eps running from near 0 to near pi.

@@ -3,7 +3,7 @@
 // wavelength where the measured samples themselves go beyond (the far infrared: Querry's
 // brasses reach n = 297 at 55 um), 10 % above their largest n, k there (the paper's Drude
 // interpolation and the natural spline are not bounded by the samples exactly: measured
-// 0.01 % and 5 % above them), at 201 compositions and every 5 nm. The
+// 0.01 % and 5 % above them), at 201 compositions and every 5 nm (at most 1000 wavelengths). The
 // physical model may refuse a data set (it does on Querry's zinc), and then must say so.
 #include "alloycolor/fit/methods.h"
 
@@ -46,8 +46,10 @@ TEST(EveryMethod, StaysPassiveAndBoundedOnEveryBundledSet) {
         EXPECT_NE(std::string(e.what()).find("not passive"), std::string::npos) << e.what();
         continue;
       }
+      // Every 5 nm, or 1000 wavelengths over a wider range (Querry's reach 55 um).
+      const double step = std::max(5.0, (model->lambda_max_nm() - model->lambda_min_nm()) / 1000);
       const std::vector<double> grid =
-          UniformGrid(std::ceil(model->lambda_min_nm() / 5) * 5, model->lambda_max_nm(), 5);
+          UniformGrid(std::ceil(model->lambda_min_nm() / 5) * 5, model->lambda_max_nm(), step);
       std::vector<double> bound(grid.size(), 50.0);
       for (const Sample& s : data.samples) {
         for (size_t j = 0; j < grid.size(); ++j) {

@@ -130,33 +130,24 @@ TEST(ModelFile, RoundTripGivesIdenticalPredictionsAndBytes) {
 TEST(ModelFile, DamagedFilesNameTheCulprit) {
   const Dataset data = LoadDataset(DataDir() + "/Au-Ag");
   const nlohmann::json good = SampleModel(SampleModel::Kind::kPaper, data).ToJson();
-  auto expect_error = [](const nlohmann::json& doc, const std::string& needle) {
-    try {
-      ModelFromJson(doc, "m.json");
-      FAIL() << "no error for " << needle;
-    } catch (const Error& e) {
-      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
-      EXPECT_NE(std::string(e.what()).find("m.json"), std::string::npos) << e.what();
-    }
-  };
   nlohmann::json doc = good;
   doc["version"] = 99;
-  expect_error(doc, "version");
+  testing::ExpectModelFileError(doc, "version");
   doc = good;
   doc["format"] = "something";
-  expect_error(doc, "format");
+  testing::ExpectModelFileError(doc, "format");
   doc = good;
   doc.erase("system");
-  expect_error(doc, "system");
+  testing::ExpectModelFileError(doc, "system");
   doc = good;
   doc["method"] = "magic";
-  expect_error(doc, "magic");
+  testing::ExpectModelFileError(doc, "magic");
   doc = good;
   doc["x_range"] = "wide";
-  expect_error(doc, "x_range");
+  testing::ExpectModelFileError(doc, "x_range");
   doc = good;
   doc["parameters"]["samples"][0]["n"] = "oops";
-  expect_error(doc, "parameters.samples[0]");
+  testing::ExpectModelFileError(doc, "parameters.samples[0]");
 }
 
 TEST(DefaultGrid, VisibleForAuAgAndInfraredForNbSn) {

@@ -454,24 +454,15 @@ TEST(SmoothFit, TheLogarithmsFileReadsBackAndItsDamageIsNamed) {
   const std::vector<double> grid = UniformGrid(380, 800, 5);
   for (double x : {0.0, 0.15, 0.5, 1.0})
     EXPECT_EQ(back->Permittivity(x, grid), model->Permittivity(x, grid));
-  auto expect_error = [](const nlohmann::json& bad, const std::string& needle) {
-    try {
-      ModelFromJson(bad, "m.json");
-      FAIL() << "no error for " << needle;
-    } catch (const Error& e) {
-      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
-      EXPECT_NE(std::string(e.what()).find("m.json"), std::string::npos) << e.what();
-    }
-  };
   nlohmann::json bad = doc;
   bad["parameters"]["space"] = "magic";
-  expect_error(bad, "parameters.space");
+  testing::ExpectModelFileError(bad, "parameters.space");
   bad = doc;
   bad["parameters"]["arg_eps_rad"][1][2] = 3.5;
-  expect_error(bad, "arg_eps_rad[1]");
+  testing::ExpectModelFileError(bad, "arg_eps_rad[1]");
   bad = doc;
   bad["parameters"].erase("ln_abs_eps");
-  expect_error(bad, "parameters.ln_abs_eps");
+  testing::ExpectModelFileError(bad, "parameters.ln_abs_eps");
   // A file of before the logarithm has no space: eps.
   fit::SmoothFitOptions eps_options;
   eps_options.space = SmoothSpace::kEps;

@@ -1,6 +1,7 @@
 #include "test_util.h"
 
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -10,7 +11,9 @@
 #include <random>
 #include <stdexcept>
 
+#include "alloycolor/core/error.h"
 #include "alloycolor/core/io.h"
+#include "alloycolor/model/alloy_model.h"
 #include "alloycolor/model/optics.h"
 
 namespace alloycolor::testing {
@@ -112,6 +115,16 @@ std::complex<double> Geometric(double x, double lambda_nm) {
 std::complex<double> LinearEps(double x, double lambda_nm) {
   return (1 - x) * std::complex<double>(-20.0 - 0.02 * (lambda_nm - 500), 1.5) +
          x * std::complex<double>(-5.0, 5.0 + 0.001 * lambda_nm);
+}
+
+void ExpectModelFileError(const nlohmann::json& doc, const std::string& needle) {
+  try {
+    ModelFromJson(doc, "m.json");
+    ADD_FAILURE() << "no error for " << needle;
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("m.json"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace alloycolor::testing

@@ -4,6 +4,7 @@
 
 #include <complex>
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -44,6 +45,10 @@ std::complex<double> Geometric(double x, double lambda_nm);
 
 // Two metals with eps linear in composition between them.
 std::complex<double> LinearEps(double x, double lambda_nm);
+
+// Reading `doc` as a model file named "m.json" fails with one message naming the file and
+// containing `needle` (a GoogleTest failure otherwise).
+void ExpectModelFileError(const nlohmann::json& doc, const std::string& needle);
 
 }  // namespace alloycolor::testing
 

@@ -155,14 +155,17 @@ TEST(PredictionError, EndFactorByHand) {
   EXPECT_NEAR(model->prediction_error().end_factor, std::sqrt(4 / std::cbrt(18.0)), 2e-3);
 }
 
-// The calibration by hand (docs/model-format.md): five folds that each saw twice the
-// predicted error: s^2 = 2 * 0.6^2 / 6 = 0.12, spread = sqrt(0.12 * 1.2) = 0.37947, the
-// one-sigma branch 2 exp(0.4677 * 0.37947) = 2.38841. Ratios 0.1, 1, 10: mu = 0,
-// s^2 = (0.72 + 2 ln(10)^2) / 4, spread = sqrt(s^2 * 4 / 3) = 1.94283, the two-sigma branch
-// exp(1.6449 * 1.94283) / 2 = 12.2144.
+// The calibration by hand (docs/model-format.md), Student's t quantiles from a table
+// (one-sided 95 %: 1.9432 for 6 degrees of freedom, 2.1318 for 4) and, for 68 %, scipy's
+// t.ppf (0.49230 for 6). Five folds that each saw twice the predicted error: nu = 2 + 5 - 1,
+// s^2 = 2 * 0.6^2 / 6 = 0.12, spread = sqrt(0.12 * 1.2) = 0.37947, the one-sigma branch
+// 2 exp(0.49230 * 0.37947) = 2.41081 (the two-sigma one 2 exp(1.9432 * 0.37947) / 2 =
+// 2.0905). Ratios 0.1, 1, 10: nu = 4, mu = 0, s^2 = (0.72 + 2 ln(10)^2) / 4,
+// spread = sqrt(s^2 * 4 / 3) = 1.94283, the two-sigma branch exp(2.1318 * 1.94283) / 2 =
+// 31.459.
 TEST(PredictionError, CalibrationByHand) {
-  EXPECT_NEAR(fit::SigmaCalibration(std::vector<double>(5, std::log(2.0))), 2.38841, 1e-4);
-  EXPECT_NEAR(fit::SigmaCalibration({std::log(0.1), 0.0, std::log(10.0)}), 12.2144, 1e-3);
+  EXPECT_NEAR(fit::SigmaCalibration(std::vector<double>(5, std::log(2.0))), 2.41081, 1e-4);
+  EXPECT_NEAR(fit::SigmaCalibration({std::log(0.1), 0.0, std::log(10.0)}), 31.459, 2e-3);
   EXPECT_EQ(fit::SigmaCalibration({}), 1.0);
   EXPECT_EQ(fit::SigmaCalibration({-50.0}), 1e-3);  // clamped
 }

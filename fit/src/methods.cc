@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <map>
 #include <mutex>
+
+#include <boost/math/distributions/students_t.hpp>
 #include <nlohmann/json.hpp>
 
 #include "alloycolor/core/error.h"
@@ -217,15 +219,19 @@ void EstimatePredictionError(std::vector<Fold>& fitted, const Dataset& dataset,
   const double reference_gap = gap_sum / done.size();
   // Each fold's relative eps errors per wavelength, over its B (reference gap, end factor 1).
   struct FoldErrors {
+    Fold* fold = nullptr;
     std::vector<double> over_bump;  // per held-out sample and wavelength, flattened
     bool end = false;               // held out in an end interval of its training samples
+    std::vector<double> sum_sq;     // per wavelength: its part of sum_sq below
+    int count = 0;                  // its held-out samples
   };
   std::vector<FoldErrors> errors;
-  for (const Fold* fp : done) {
+  for (Fold* fp : done) {
     const Fold& f = *fp;
     const double bump = f.bump / reference_gap;
     if (!(bump > 0)) continue;
     FoldErrors fe;
+    fe.fold = fp;
     const size_t n = f.compositions.size();
     const size_t hi = std::upper_bound(f.compositions.begin(), f.compositions.end(), f.x) -
                       f.compositions.begin();
@@ -266,12 +272,15 @@ void EstimatePredictionError(std::vector<Fold>& fitted, const Dataset& dataset,
   // scale[j]^2: mean over the held-out samples of (relative error / B)^2.
   std::vector<double> sum_sq(grid.size(), 0.0);
   int count = 0;
-  for (const FoldErrors& fe : errors) {
+  for (FoldErrors& fe : errors) {
     const double factor = fe.end ? end_factor : 1.0;
+    fe.sum_sq.assign(grid.size(), 0.0);
     for (size_t k = 0; k < fe.over_bump.size(); ++k) {
-      sum_sq[k % grid.size()] += std::pow(fe.over_bump[k] / factor, 2);
+      fe.sum_sq[k % grid.size()] += std::pow(fe.over_bump[k] / factor, 2);
     }
-    count += static_cast<int>(fe.over_bump.size() / grid.size());
+    fe.count = static_cast<int>(fe.over_bump.size() / grid.size());
+    for (size_t j = 0; j < grid.size(); ++j) sum_sq[j] += fe.sum_sq[j];
+    count += fe.count;
   }
   if (count == 0) return;
   PredictionError error;
@@ -281,14 +290,22 @@ void EstimatePredictionError(std::vector<Fold>& fitted, const Dataset& dataset,
   error.compositions = DistinctCompositions(dataset);
   error.reference_gap = reference_gap;
   error.folds = static_cast<int>(done.size());
-  // Calibration on colour: the folds' observed / predicted one-sigma CIEDE2000.
+  // Calibration on colour: the folds' observed / predicted one-sigma CIEDE2000, each
+  // fold's sigma from the scale of the other folds (cross-fitted: a fold's own error in
+  // its scale would flatter the ratio, by half with two folds).
   if (settings.colorimeter != nullptr && CoversVisible(lo, hi)) {
     const color::Colorimeter& cm = *settings.colorimeter;
     std::vector<double> log_ratios;
-    for (Fold* fp : done) {
-      Fold& f = *fp;
+    for (const FoldErrors& fe : errors) {
+      Fold& f = *fe.fold;
       PredictionError fold_error = error;
       fold_error.compositions = f.compositions;
+      if (errors.size() > 1) {
+        for (size_t j = 0; j < grid.size(); ++j) {
+          fold_error.scale[j] =
+              std::min(std::sqrt((sum_sq[j] - fe.sum_sq[j]) / (count - fe.count)), 100.0);
+        }
+      }
       f.model->set_prediction_error(fold_error);
       const double x = f.held.front()->x_atomic;
       const double sigma = color::DeltaE00Sigma(cm, *f.model, x, 0.0);
@@ -717,7 +734,12 @@ double SigmaCalibration(const std::vector<double>& log_ratios) {
   for (double v : log_ratios) sq += (v - mu) * (v - mu);
   const double s2 = (kPriorFolds * kPriorLogSpread * kPriorLogSpread + sq) / (kPriorFolds + f - 1);
   const double spread = std::sqrt(s2 * (1 + 1 / f));
-  const double c = std::max(std::exp(mu + 0.4677 * spread), std::exp(mu + 1.6449 * spread) / 2);
+  // A new log ratio's predictive law: Student's t with the pooled variance's degrees of
+  // freedom (normal-inverse-chi-squared prior), its quantiles wider than the normal's
+  // while the folds are few.
+  const boost::math::students_t law(kPriorFolds + f - 1);
+  const double q68 = boost::math::quantile(law, 0.68), q95 = boost::math::quantile(law, 0.95);
+  const double c = std::max(std::exp(mu + q68 * spread), std::exp(mu + q95 * spread) / 2);
   return std::clamp(c, 1e-3, 1e3);
 }
 

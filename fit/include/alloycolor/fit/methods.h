@@ -77,8 +77,9 @@ std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings&
 // The calibration of a prediction error's one-sigma colour uncertainty from its folds'
 // log ratios of observed to uncalibrated predicted CIEDE2000 (docs/model-format.md): the
 // ratios taken as log-normal, their variance pooled with a prior spread of 0.6 worth two
-// folds and widened by (1 + 1/f); the factor puts 68 % of new ratios inside one sigma, or
-// 95 % inside two where the spread is wide. 1 for no folds; clamped to 1e-3..1e3.
+// folds and widened by (1 + 1/f); a new ratio's law is then Student's t (1 + f degrees of
+// freedom) and the factor puts 68 % of new ratios inside one sigma, or 95 % inside two
+// where the spread is wide. 1 for no folds; clamped to 1e-3..1e3.
 double SigmaCalibration(const std::vector<double>& log_ratios);
 
 // One builder per entry of Methods(), in the same order.
@@ -88,10 +89,11 @@ const std::vector<MethodBuilder>& Builders();
 // more, estimates its prediction error: each interior composition (20 at most, spread by
 // rank) is held out in turn, the method built on the rest predicts it, and the relative
 // eps errors give scale[j] = RMS over folds of error / B (PredictionError); the
-// calibration then makes the held-out CIEDE2000 errors of the folds, divided by their
-// one-sigma colour uncertainty, have an RMS of 1, widened by sqrt(1 + 1/f) for f folds
-// (colorimeter and visible data needed; 1 otherwise). Throws Error for an unknown method (listing the known
-// ones), a bad setting (naming the option) or data the method cannot use.
+// calibration (SigmaCalibration) then scales the one-sigma colour uncertainty to the
+// folds' held-out CIEDE2000 errors, each fold's sigma from the other folds' scale
+// (colorimeter and visible data needed; 1 otherwise). Throws Error for an unknown method
+// (listing the known ones), a bad setting (naming the option) or data the method cannot
+// use.
 std::unique_ptr<AlloyModel> BuildModel(const std::string& method, const Dataset& dataset,
                                        const FitSettings& settings = {});
 

@@ -1,21 +1,20 @@
 #include "alloycolor/fit/methods.h"
 
 #include <algorithm>
+#include <boost/math/distributions/students_t.hpp>
 #include <cmath>
 #include <cstdio>
 #include <map>
 #include <mutex>
-
-#include <boost/math/distributions/students_t.hpp>
 #include <nlohmann/json.hpp>
 
-#include "alloycolor/core/error.h"
 #include "alloycolor/color/colorimetry.h"
 #include "alloycolor/color/material_color.h"
-#include "alloycolor/core/text.h"
-#include "alloycolor/core/io.h"
+#include "alloycolor/core/error.h"
 #include "alloycolor/core/grid.h"
+#include "alloycolor/core/io.h"
 #include "alloycolor/core/parallel.h"
+#include "alloycolor/core/text.h"
 #include "alloycolor/fit/physical_fit.h"
 #include "alloycolor/fit/smooth_fit.h"
 #include "alloycolor/model/registry.h"

@@ -155,6 +155,50 @@ TEST(PredictionError, EndFactorByHand) {
   EXPECT_NEAR(model->prediction_error().end_factor, std::sqrt(4 / std::cbrt(18.0)), 2e-3);
 }
 
+// The calibration is cross-fitted: each fold's sigma comes from the other folds' scale.
+// eps = eps0 (1 + x / 10 + d(x)) at x = 0, 1/3, 2/3, 1 (every wavelength alike), d = 0 at
+// the ends; eps-linear leaving out 1/3 misses by (d(2/3) / 2 - d(1/3)) / (1 + 1/30 + d(1/3))
+// relative to eps, leaving out 2/3 by (d(1/3) / 2 - d(2/3)) / (1 + 2/30 + d(2/3)), both
+// folds with the same B. For
+// small errors along eps0 the held-out CIEDE2000 over the one-sigma colour uncertainty is
+// g |error| / scale, g the same in every fold: cross-fitted, the folds' log ratios are
+// ln g +- ln(a / b) (a, b the two errors), against ln g + ln(a / s), ln g + ln(b / s) with
+// s = sqrt((a^2 + b^2) / 2), the scale of both, had each fold's own error entered its sigma.
+// g is read off a second data set whose two errors are nearly equal.
+TEST(PredictionError, CalibrationIsCrossFitted) {
+  const std::complex<double> eps0(-5.0, 2.0);
+  const auto calibration = [&](double d1, double d2) {
+    const std::string dir = testing::WriteSyntheticDataset(
+        {0.0, 1.0 / 3, 2.0 / 3, 1.0}, [&](double x, double) {
+          const double d = std::abs(x - 1.0 / 3) < 1e-9 ? d1 : std::abs(x - 2.0 / 3) < 1e-9 ? d2 : 0.0;
+          return eps0 * (1.0 + x / 10 + d);
+        });
+    const color::Colorimeter cm = color::Colorimeter::Load(DataDir(), "D65", 2);
+    fit::FitSettings settings;
+    settings.colorimeter = &cm;
+    const auto model = fit::BuildModel("eps-linear", LoadDataset(dir), settings);
+    EXPECT_EQ(model->prediction_error().folds, 2);
+    return model->prediction_error().calibration;
+  };
+  const auto errors = [](double d1, double d2) {
+    return std::pair{std::abs((d2 / 2 - d1) / (1 + 1.0 / 30 + d1)),
+                     std::abs((d1 / 2 - d2) / (1 + 2.0 / 30 + d2))};
+  };
+  // Nearly equal errors: calibration = g * SigmaCalibration({ln k, -ln k}), k their ratio.
+  const double eta = 0.004;
+  const auto [a0, b0] = errors(-eta, eta);
+  const double log_g =
+      std::log(calibration(-eta, eta)) - std::log(fit::SigmaCalibration({std::log(a0 / b0), std::log(b0 / a0)}));
+  // Errors in the ratio 1 : 2.
+  const double e = 0.01;
+  const auto [a, b] = errors(0.0, e);
+  const double s = std::sqrt((a * a + b * b) / 2);
+  const double cross = fit::SigmaCalibration({log_g + std::log(a / b), log_g + std::log(b / a)});
+  const double own = fit::SigmaCalibration({log_g + std::log(a / s), log_g + std::log(b / s)});
+  EXPECT_GT(cross / own, 1.5);  // the two readings differ plainly
+  EXPECT_NEAR(calibration(0.0, e) / cross, 1.0, 0.03);
+}
+
 // The calibration by hand (docs/model-format.md), Student's t quantiles from a table
 // (one-sided 95 %: 1.9432 for 6 degrees of freedom, 2.1318 for 4) and, for 68 %, scipy's
 // t.ppf (0.49230 for 6). Five folds that each saw twice the predicted error: nu = 2 + 5 - 1,

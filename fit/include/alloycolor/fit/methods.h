@@ -78,8 +78,9 @@ std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings&
 // log ratios of observed to uncalibrated predicted CIEDE2000 (docs/model-format.md): the
 // ratios taken as log-normal, their variance pooled with a prior spread of 0.6 worth two
 // folds and widened by (1 + 1/f); a new ratio's law is then Student's t (1 + f degrees of
-// freedom) and the factor puts 68 % of new ratios inside one sigma, or 95 % inside two
-// where the spread is wide. 1 for no folds; clamped to 1e-3..1e3.
+// freedom) and the factor puts 68 % of new ratios inside one sigma; where that leaves fewer
+// than 95 % inside two (a wide spread), the geometric mean of that factor and the one that
+// puts 95 % inside two. 1 for no folds; clamped to 1e-3..1e3.
 double SigmaCalibration(const std::vector<double>& log_ratios);
 
 // One builder per entry of Methods(), in the same order.

@@ -225,6 +225,10 @@ TEST_F(BadInput, ModelFilesAndRefit) {
   doc["uncertainty"]["end_factor"] = 0.5;
   ExpectCleanError({"predict", "--model", File("end.json", doc.dump()), "--x", "0.5"},
                    {"end.json", "uncertainty.end_factor"});
+  doc = nlohmann::json::parse(text);
+  doc["uncertainty"]["gap_exponent"] = 5;
+  ExpectCleanError({"predict", "--model", File("gap.json", doc.dump()), "--x", "0.5"},
+                   {"gap.json", "uncertainty.gap_exponent"});
   // Refit: reports the added samples, keeps the old model.
   r = RunProgram({"fit", "--data", "Au-Ag", "--from", model, "--out", dir_ + "/new.json"});
   ASSERT_EQ(r.status, 0) << r.err;

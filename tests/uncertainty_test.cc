@@ -47,6 +47,12 @@ TEST(PredictionError, BumpAndScaleByHand) {
   EXPECT_NEAR(four.Bump(0.1), 2 * 0.48, 1e-15);
   EXPECT_DOUBLE_EQ(four.Bump(0.375), 4 * 0.5 * 0.5 * 0.25 / 0.5);
   EXPECT_DOUBLE_EQ(four.Bump(0.75), 2 * 4 * 0.5 * 0.5 * 0.5 / 0.5);
+  // The gap squared: x = 0.625, 4 * 0.5 * 0.5 * (0.75 / 0.5)^2; x = 0.1, 4 * 0.4 * 0.6 *
+  // (0.25 / 0.5)^2.
+  PredictionError squared = e;
+  squared.gap_exponent = 2;
+  EXPECT_DOUBLE_EQ(squared.Bump(0.625), 2.25);
+  EXPECT_NEAR(squared.Bump(0.1), 0.24, 1e-15);
   EXPECT_DOUBLE_EQ(e.ScaleAt(500), 0.03);
   EXPECT_DOUBLE_EQ(e.ScaleAt(300), 0.02);
   EXPECT_DOUBLE_EQ(e.ScaleAt(900), 0.01);
@@ -86,6 +92,9 @@ TEST(PredictionError, BadValuesAreRefusedByName) {
   e = Example();
   e.compositions = {0.5, 0.2};
   EXPECT_THROW(model.set_prediction_error(e), Error);
+  e = Example();
+  e.gap_exponent = -1;
+  EXPECT_THROW(model.set_prediction_error(e), Error);
 }
 
 TEST(PredictionError, FitsOfThreeCompositionsOrMoreCarryItAndTheFileKeepsIt) {
@@ -109,10 +118,17 @@ TEST(PredictionError, FitsOfThreeCompositionsOrMoreCarryItAndTheFileKeepsIt) {
   EXPECT_EQ(back->prediction_error().scale, e.scale);
   EXPECT_EQ(back->prediction_error().calibration, e.calibration);
   EXPECT_EQ(back->prediction_error().end_factor, e.end_factor);
-  // A file from before the end factor: every interval alike.
+  EXPECT_EQ(e.gap_exponent, 1.0);  // a cubic: B linear in the gap
+  // A file from before the end factor and the gap exponent: every interval alike, B linear.
   nlohmann::json older = model->ToJson();
   older["uncertainty"].erase("end_factor");
   EXPECT_EQ(ModelFromJson(older, "older")->prediction_error().end_factor, 1.0);
+  const auto linear = fit::BuildModel("eps-linear", all, settings);
+  EXPECT_EQ(linear->prediction_error().gap_exponent, 2.0);
+  EXPECT_EQ(ModelFromJson(linear->ToJson(), "mem")->prediction_error().gap_exponent, 2.0);
+  older = linear->ToJson();
+  older["uncertainty"].erase("gap_exponent");
+  EXPECT_EQ(ModelFromJson(older, "older")->prediction_error().gap_exponent, 1.0);
   settings.calibrate = false;
   EXPECT_FALSE(fit::BuildModel("eps-pchip", all, settings)->HasUncertainty());
 }
@@ -153,6 +169,32 @@ TEST(PredictionError, EndFactorByHand) {
   settings.colorimeter = &cm;
   const auto model = fit::BuildModel("eps-linear", LoadDataset(dir), settings);
   EXPECT_NEAR(model->prediction_error().end_factor, std::sqrt(4 / std::cbrt(18.0)), 2e-3);
+}
+
+// A linear interpolation's error grows as the gap squared, and eps-linear's B says so.
+// eps = -100 + i (1 + x^2) (every wavelength alike) at x = 0, 0.2, 0.4, 1: the line misses
+// x^2 by t (1 - t) h^2 (f'' = 2). Leaving out 0.2 (h = 0.4, t = 1/2) it misses by 0.04,
+// leaving out 0.4 (h = 0.8, t = 1/4) by 0.12; the folds' mean gap is 0.6, so with B =
+// 4 t (1 - t) (h / 0.6)^2 = 4/9 and 4/3 both folds give error / B = 0.09 (over |eps|, 100 to
+// within 1e-4): scale = 9e-4, and the whole model's B at x = 0.1 (h = 0.2, t = 1/2) is 1/9,
+// sigma 1e-4, the line's true relative error there 0.01 / 100. With B linear in the gap the
+// folds would give 0.06 and 0.12 and the sigma at 0.1 would be 3.2e-4.
+TEST(PredictionError, LinearInterpolationErrorGrowsAsTheGapSquared) {
+  const std::string dir = testing::WriteSyntheticDataset(
+      {0.0, 0.2, 0.4, 1.0},
+      [](double x, double) { return std::complex<double>(-100.0, 1.0 + x * x); });
+  const color::Colorimeter cm = color::Colorimeter::Load(DataDir(), "D65", 2);
+  fit::FitSettings settings;
+  settings.colorimeter = &cm;
+  const auto model = fit::BuildModel("eps-linear", LoadDataset(dir), settings);
+  const PredictionError& e = model->prediction_error();
+  EXPECT_EQ(e.end_factor, 1.0);  // both folds are end folds
+  EXPECT_NEAR(e.reference_gap, 0.6, 1e-12);
+  EXPECT_NEAR(e.ScaleAt(550), 9e-4, 1e-6);
+  const double truth = 0.01 / std::abs(std::complex<double>(-100.0, 1.01));
+  EXPECT_NEAR(e.ScaleAt(550) * e.Bump(0.1) / truth, 1.0, 0.01);
+  const std::complex<double> predicted = model->Permittivity(0.1, {550.0})[0];
+  EXPECT_NEAR(std::abs(predicted - std::complex<double>(-100.0, 1.01)), 0.01, 1e-9);
 }
 
 // The calibration is cross-fitted: each fold's sigma comes from the other folds' scale.

@@ -155,7 +155,6 @@ struct Fold {
   std::string error;                 // why model is null
   std::vector<const Sample*> held;
   std::vector<double> compositions;  // of the fold's training samples
-  double bump = 0;                   // B(x) of the held-out composition, reference gap 1
 };
 
 // The method built without each of ErrorFolds in turn, in parallel. The physical fit of a
@@ -192,16 +191,22 @@ std::vector<Fold> FitFolds(const std::string& method, const Dataset& dataset,
       if (s.x_atomic == f.x) f.held.push_back(&s);
     }
     f.compositions = DistinctCompositions(training);
-    PredictionError unit;
-    unit.compositions = f.compositions;
-    f.bump = unit.Bump(f.x);
   });
   return folds;
 }
 
+// The power of the gap in B: 2 for the methods that interpolate linearly between
+// neighbouring samples (paper: tau and m*; eps-linear: eps), whose error on a smooth curve
+// is t (1 - t) h^2 f'' / 2; 1 for the others, between the h^3 or h^4 of a cubic on a
+// smooth curve and the h^0 of sample-to-sample scatter.
+double GapExponent(const std::string& method) {
+  return method == "paper" || method == "eps-linear" ? 2.0 : 1.0;
+}
+
 // The prediction error (BuildModel) from the folds; sets each fold model's error too.
-void EstimatePredictionError(std::vector<Fold>& fitted, const Dataset& dataset,
-                             const FitSettings& settings, AlloyModel* model) {
+void EstimatePredictionError(const std::string& method, std::vector<Fold>& fitted,
+                             const Dataset& dataset, const FitSettings& settings,
+                             AlloyModel* model) {
   const double lo = model->lambda_min_nm(), hi = model->lambda_max_nm();
   std::vector<double> grid;
   for (int j = 0; j <= 80; ++j) grid.push_back(lo + (hi - lo) * j / 80.0);
@@ -216,6 +221,7 @@ void EstimatePredictionError(std::vector<Fold>& fitted, const Dataset& dataset,
   }
   if (done.empty()) return;
   const double reference_gap = gap_sum / done.size();
+  const double gap_exponent = GapExponent(method);
   // Each fold's relative eps errors per wavelength, over its B (reference gap, end factor 1).
   struct FoldErrors {
     Fold* fold = nullptr;
@@ -227,7 +233,11 @@ void EstimatePredictionError(std::vector<Fold>& fitted, const Dataset& dataset,
   std::vector<FoldErrors> errors;
   for (Fold* fp : done) {
     const Fold& f = *fp;
-    const double bump = f.bump / reference_gap;
+    PredictionError shape;
+    shape.compositions = f.compositions;
+    shape.reference_gap = reference_gap;
+    shape.gap_exponent = gap_exponent;
+    const double bump = shape.Bump(f.x);
     if (!(bump > 0)) continue;
     FoldErrors fe;
     fe.fold = fp;
@@ -288,6 +298,7 @@ void EstimatePredictionError(std::vector<Fold>& fitted, const Dataset& dataset,
   for (double v : sum_sq) error.scale.push_back(std::min(std::sqrt(v / count), 100.0));
   error.compositions = DistinctCompositions(dataset);
   error.reference_gap = reference_gap;
+  error.gap_exponent = gap_exponent;
   error.folds = static_cast<int>(done.size());
   // Calibration on colour: the folds' observed / predicted one-sigma CIEDE2000, each
   // fold's sigma from the scale of the other folds (cross-fitted: a fold's own error in
@@ -338,7 +349,7 @@ std::unique_ptr<AlloyModel> Build(const std::string& method, const Dataset& data
 void AddFolds(const std::string& method, const Dataset& dataset, const FitSettings& settings,
               AlloyModel* model, std::vector<Fold>* folds) {
   *folds = FitFolds(method, dataset, settings, *model);
-  if (settings.calibrate) EstimatePredictionError(*folds, dataset, settings, model);
+  if (settings.calibrate) EstimatePredictionError(method, *folds, dataset, settings, model);
 }
 
 // `method` built on the data set; with `folds` (or settings.calibrate) the leave-one-out

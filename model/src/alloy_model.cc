@@ -139,7 +139,7 @@ double PredictionError::Bump(double x) const {
   const double h = compositions[hi] - compositions[hi - 1];
   const double t = (x - compositions[hi - 1]) / h;
   const bool end = n > 2 && (hi == 1 || hi == n - 1);
-  return (end ? end_factor : 1.0) * 4 * std::abs(t * (1 - t)) * h / reference_gap;
+  return (end ? end_factor : 1.0) * 4 * std::abs(t * (1 - t)) * std::pow(h / reference_gap, gap_exponent);
 }
 
 double PredictionError::ScaleAt(double l) const {
@@ -171,6 +171,9 @@ void AlloyModel::set_prediction_error(PredictionError e) {
   }
   if (!(e.reference_gap > 0 && e.reference_gap <= 1e6)) {
     throw Error(where + "reference_gap: must be positive");
+  }
+  if (!(e.gap_exponent >= 0 && e.gap_exponent <= 4)) {
+    throw Error(where + "gap_exponent: must lie in 0..4");
   }
   if (!(e.end_factor >= 1 && e.end_factor <= 100)) {
     throw Error(where + "end_factor: must lie in 1..100");
@@ -358,6 +361,7 @@ nlohmann::json AlloyModel::ToJson() const {
         {"scale", e.scale},
         {"compositions", e.compositions},
         {"reference_gap", e.reference_gap},
+        {"gap_exponent", e.gap_exponent},
         {"end_factor", e.end_factor},
         {"calibration", e.calibration}};
   }
@@ -446,6 +450,10 @@ void AlloyModel::ReadCommon(const nlohmann::json& doc) {
     e.compositions = numbers("compositions");
     e.reference_gap = Number(Field(u, "reference_gap", "uncertainty"), "uncertainty.reference_gap");
     e.calibration = Number(Field(u, "calibration", "uncertainty"), "uncertainty.calibration");
+    // Files before the gap exponent: B linear in the gap.
+    if (u.contains("gap_exponent")) {
+      e.gap_exponent = Number(u["gap_exponent"], "uncertainty.gap_exponent");
+    }
     // Files before the end factor: every interval alike.
     if (u.contains("end_factor")) {
       e.end_factor = Number(u["end_factor"], "uncertainty.end_factor");

@@ -67,11 +67,13 @@ struct FitSummary {
 // How far a model's predictions between its training compositions are off, estimated
 // by leave-one-composition-out when it is fitted (fit/methods.h): at wavelength node j
 // the relative eps error at composition x is scale[j] * B(x), with
-//   B(x) = 4 t (1 - t) h / reference_gap   (times end_factor in an end interval),
-// t the position of x in its interval of width h between neighbouring training
-// compositions (B = 0 at each of them; beyond the ends |t(1 - t)|, growing). Linear in
-// the gap: between the h^2 of interpolating a smooth curve and the h^0 of sample-to-sample
-// scatter in real measurements (on Cu-Zn the square overstated the wide gap's error 5x and
+//   B(x) = 4 t (1 - t) (h / reference_gap)^gap_exponent   (times end_factor in an end
+// interval), t the position of x in its interval of width h between neighbouring training
+// compositions (B = 0 at each of them; beyond the ends |t(1 - t)|, growing). The fit sets
+// the exponent by method (fit/methods.h): 2 for a linear interpolation, whose error on a
+// smooth curve grows as h^2; 1 for the others, between the h^3 or more of a cubic on a
+// smooth curve and the h^0 of sample-to-sample scatter in real measurements (on Cu-Zn,
+// when B was one shape for all methods, the square overstated the wide gap's error 5x and
 // understated the narrow ones' 3x). The
 // calibration factor scales it so that held-out colour errors, in the folds, have the
 // spread the one-sigma colour uncertainty claims. Draws of eps add
@@ -82,6 +84,8 @@ struct PredictionError {
   std::vector<double> lambda_nm, scale;  // wavelength nodes, increasing
   std::vector<double> compositions;      // training compositions, increasing
   double reference_gap = 1;
+  // The power of h / reference_gap in B (0..4; 1 in files without it).
+  double gap_exponent = 1;
   // B in an end interval (between the first two or the last two compositions, three or
   // more of them) is this many times an interior interval's: a curve there is pinned on
   // one side only. From the folds (1 where they cannot tell; docs/model-format.md).

@@ -139,7 +139,8 @@ double PredictionError::Bump(double x) const {
   const double h = compositions[hi] - compositions[hi - 1];
   const double t = (x - compositions[hi - 1]) / h;
   const bool end = n > 2 && (hi == 1 || hi == n - 1);
-  return (end ? end_factor : 1.0) * 4 * std::abs(t * (1 - t)) * std::pow(h / reference_gap, gap_exponent);
+  return (end ? end_factor : 1.0) * 4 * std::abs(t * (1 - t)) *
+         std::pow(h / reference_gap, gap_exponent);
 }
 
 double PredictionError::ScaleAt(double l) const {

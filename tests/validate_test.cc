@@ -480,8 +480,10 @@ TEST(Validate, AMethodFailingEverywhereIsReportedBesideTheOthers) {
 // Issue 11's test of honest error bars: pooled over every leave-one-out fold of the bundled
 // colour sets (Au-Ag, Cu-Zn with Querry's and with Werner's zinc) and over the methods, the
 // held-out CIEDE2000 falls within one sigma 55-80 % of the time and within two 90 % or more
-// (measured 63/86 and 83/86). Held-out data against each method's own claim; the same
-// counts `validate` prints.
+// (measured 55/75 and 73/75; the calibration before the geometric mean and the linear
+// methods' squared gap gave 65/75). Held-out data against each method's own claim; the same
+// counts `validate` prints. Physical (8/11 and 10/11) is left out: its joint fits take five
+// times the others' time, minutes under the sanitizers.
 TEST(Validate, PooledLeaveOneOutCoverageOfTheBundledSetsIsInTheIssuesBand) {
   const std::string dir = MakeTempDir();
   const std::vector<std::string> sets = {DataDir() + "/Au-Ag", DataDir() + "/Cu-Zn",
@@ -490,7 +492,7 @@ TEST(Validate, PooledLeaveOneOutCoverageOfTheBundledSetsIsInTheIssuesBand) {
   for (size_t i = 0; i < sets.size(); ++i) {
     const std::string out = dir + "/r" + std::to_string(i);
     const RunResult r = RunProgram({"validate", "--data", sets[i], "--loo", "--methods",
-                                    "paper,eps-linear,eps-pchip,eps-spline,smooth,physical",
+                                    "paper,eps-linear,eps-pchip,eps-spline,smooth",
                                     "--angles", "0", "--quiet", "--out", out});
     ASSERT_EQ(r.status, 0) << r.err;
     const nlohmann::json report = nlohmann::json::parse(ReadText(out + "/report.json"));
@@ -500,7 +502,7 @@ TEST(Validate, PooledLeaveOneOutCoverageOfTheBundledSetsIsInTheIssuesBand) {
       within_2 += angles["0"]["within_2_sigma"].get<int>();
     }
   }
-  ASSERT_GT(count, 80);  // 15 folds for five methods, 11 for physical
+  ASSERT_EQ(count, 75);  // 15 folds for each of five methods
   EXPECT_GE(within_1, 0.55 * count) << within_1 << "/" << count;
   EXPECT_LE(within_1, 0.80 * count) << within_1 << "/" << count;
   EXPECT_GE(within_2, 0.90 * count) << within_2 << "/" << count;

@@ -119,6 +119,10 @@ TEST(PredictionError, FitsOfThreeCompositionsOrMoreCarryItAndTheFileKeepsIt) {
   EXPECT_EQ(back->prediction_error().calibration, e.calibration);
   EXPECT_EQ(back->prediction_error().end_factor, e.end_factor);
   EXPECT_EQ(e.gap_exponent, 1.0);  // a cubic: B linear in the gap
+  // On three compositions its one fold is the straight line between the ends.
+  const auto three = fit::BuildModel(
+      "eps-pchip", WithoutSamples(all, {0.1, 0.2, 0.3, 0.4, 0.6, 0.7, 0.8, 0.9}), settings);
+  EXPECT_EQ(three->prediction_error().gap_exponent, 2.0);
   // A file from before the end factor and the gap exponent: every interval alike, B linear.
   nlohmann::json older = model->ToJson();
   older["uncertainty"].erase("end_factor");

@@ -197,10 +197,13 @@ std::vector<Fold> FitFolds(const std::string& method, const Dataset& dataset,
 
 // The power of the gap in B: 2 for the methods that interpolate linearly between
 // neighbouring samples (paper: tau and m*; eps-linear: eps), whose error on a smooth curve
-// is t (1 - t) h^2 f'' / 2; 1 for the others, between the h^3 or h^4 of a cubic on a
-// smooth curve and the h^0 of sample-to-sample scatter.
-double GapExponent(const std::string& method) {
-  return method == "paper" || method == "eps-linear" ? 2.0 : 1.0;
+// is t (1 - t) h^2 f'' / 2, and for every method on three compositions, whose one fold is
+// that straight line between the ends; 1 for the others, between the h^3 or h^4 of a cubic
+// on a smooth curve and the h^0 of sample-to-sample scatter.
+double GapExponent(const std::string& method, const Dataset& dataset) {
+  const bool line = method == "paper" || method == "eps-linear" ||
+                    DistinctCompositions(dataset).size() == 3;
+  return line ? 2.0 : 1.0;
 }
 
 // The prediction error (BuildModel) from the folds; sets each fold model's error too.
@@ -221,7 +224,7 @@ void EstimatePredictionError(const std::string& method, std::vector<Fold>& fitte
   }
   if (done.empty()) return;
   const double reference_gap = gap_sum / done.size();
-  const double gap_exponent = GapExponent(method);
+  const double gap_exponent = GapExponent(method, dataset);
   // Each fold's relative eps errors per wavelength, over its B (reference gap, end factor 1).
   struct FoldErrors {
     Fold* fold = nullptr;

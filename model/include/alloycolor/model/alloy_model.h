@@ -71,7 +71,8 @@ struct FitSummary {
 // interval), t the position of x in its interval of width h between neighbouring training
 // compositions (B = 0 at each of them; beyond the ends |t(1 - t)|, growing). The fit sets
 // the exponent by method (fit/methods.h): 2 for a linear interpolation, whose error on a
-// smooth curve grows as h^2; 1 for the others, between the h^3 or more of a cubic on a
+// smooth curve grows as h^2, and on three compositions (the one fold is then a line); 1 for
+// the others, between the h^3 or more of a cubic on a
 // smooth curve and the h^0 of sample-to-sample scatter in real measurements (on Cu-Zn,
 // when B was one shape for all methods, the square overstated the wide gap's error 5x and
 // understated the narrow ones' 3x). The

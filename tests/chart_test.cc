@@ -6,10 +6,8 @@
 #include <png.h>
 
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <regex>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -22,15 +20,9 @@ namespace fs = std::filesystem;
 using testing::CountLines;
 using testing::DataDir;
 using testing::MakeTempDir;
+using testing::ReadText;
 using testing::RunProgram;
 using testing::RunResult;
-
-std::string ReadText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 std::string ColourHex(const std::string& x) {
   const RunResult run = RunProgram(

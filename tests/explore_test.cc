@@ -16,7 +16,6 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <random>
@@ -38,19 +37,13 @@ namespace {
 namespace fs = std::filesystem;
 using testing::DataDir;
 using testing::MakeTempDir;
+using testing::ReadText;
 using testing::RunProgram;
 using testing::RunResult;
 using testing::WriteText;
 
 constexpr const char* kChromium = "/usr/bin/chromium";
 constexpr int kTileSize = 256;
-
-std::string ReadText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 std::vector<std::uint8_t> ReadPng(const std::string& path, int* width, int* height) {
   png_image image{};

@@ -22,24 +22,11 @@ namespace {
 
 namespace fs = std::filesystem;
 using testing::DataDir;
+using testing::ErrorOf;
 using ::testing::HasSubstr;
 using testing::MakeTempDir;
 using ::testing::Not;
 using testing::WriteText;
-
-// The message of the Error thrown by f, or "" (and a test failure) when none is thrown.
-template <typename F>
-std::string ErrorOf(F f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    const std::string message = e.what();
-    EXPECT_EQ(message.find('\n'), std::string::npos) << "message spans lines: " << message;
-    return message;
-  }
-  ADD_FAILURE() << "no Error thrown";
-  return "";
-}
 
 std::vector<std::string> BundledSpectrumFiles() {
   std::vector<std::string> files;

@@ -28,25 +28,13 @@ namespace {
 
 using color::Colorimeter;
 using testing::DataDir;
+using testing::ErrorOf;
 using ::testing::HasSubstr;
 using testing::MakeTempDir;
 using testing::RunProgram;
 using testing::WriteText;
 
 constexpr double kHcEvNm = 1239.8419843320026;  // CODATA 2018, exact from h, c, e
-
-template <typename F>
-std::string ErrorOf(F f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    const std::string message = e.what();
-    EXPECT_EQ(message.find('\n'), std::string::npos) << "message spans lines: " << message;
-    return message;
-  }
-  ADD_FAILURE() << "no Error thrown";
-  return "";
-}
 
 std::string Reference() { return DataDir() + "/Au-Ag/Rioux-Au50Ag50.yml"; }
 

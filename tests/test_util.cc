@@ -19,11 +19,6 @@
 namespace alloycolor::testing {
 namespace {
 
-std::string ReadAll(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
 }  // namespace
 
 std::string MakeTempDir() {
@@ -59,8 +54,8 @@ RunResult RunProgram(const std::vector<std::string>& args) {
   waitpid(pid, &status, 0);
   RunResult result;
   result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  result.out = ReadAll(out_path);
-  result.err = ReadAll(err_path);
+  result.out = ReadText(out_path);
+  result.err = ReadText(err_path);
   std::filesystem::remove_all(dir);
   return result;
 }
@@ -68,6 +63,11 @@ RunResult RunProgram(const std::vector<std::string>& args) {
 void WriteText(const std::string& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary);
   out << text;
+}
+
+std::string ReadText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
 std::string DataDir() { return ALLOYCOLOR_DATA_DIR; }

@@ -2,11 +2,15 @@
 #ifndef ALLOYCOLOR_TESTS_TEST_UTIL_H_
 #define ALLOYCOLOR_TESTS_TEST_UTIL_H_
 
+#include <gtest/gtest.h>
+
 #include <complex>
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include "alloycolor/core/error.h"
 
 namespace alloycolor::testing {
 
@@ -24,6 +28,24 @@ std::string MakeTempDir();
 
 // Writes text to path (overwriting).
 void WriteText(const std::string& path, const std::string& text);
+
+// The whole file at path, as bytes ("" when it cannot be read).
+std::string ReadText(const std::string& path);
+
+// The message of the Error thrown by f, which must be one line, or "" and
+// a test failure when none is thrown.
+template <typename F>
+std::string ErrorOf(F f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.find('\n'), std::string::npos) << "message spans lines: " << message;
+    return message;
+  }
+  ADD_FAILURE() << "no Error thrown";
+  return "";
+}
 
 // The bundled data folder and the tests folder of the source tree.
 std::string DataDir();

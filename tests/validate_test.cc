@@ -19,7 +19,6 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -35,15 +34,9 @@ namespace fs = std::filesystem;
 using testing::CountLines;
 using testing::DataDir;
 using testing::MakeTempDir;
+using testing::ReadText;
 using testing::RunProgram;
 using testing::RunResult;
-
-std::string ReadText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 // One validation of Au-Ag holding out 0.3 and 0.7 together, shared by the tests below.
 class AuAgHoldout : public ::testing::Test {

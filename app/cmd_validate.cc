@@ -210,13 +210,7 @@ void Run(const ValidateOptions& o) {
   }
   validate::ValidationOptions options;
   const color::Colorimeter d65 = LoadColorimeter("D65", 2);
-  const std::shared_ptr<fit::FitMemo> memo = fit::MakeFitMemo();  // shared by the methods
-  options.build = [&d65, &memo](const std::string& method, const Dataset& training) {
-    fit::FitSettings settings;
-    settings.colorimeter = &d65;
-    settings.memo = memo;
-    return fit::BuildModel(method, training, settings);
-  };
+  options.build = fit::SharedFitBuilder(d65);
   options.methods = ParseMethods(o.methods);
   options.angles_deg = ParseNumberList(o.angles, "--angles");
   for (double a : options.angles_deg) {

@@ -782,6 +782,16 @@ std::unique_ptr<AlloyModel> BuildModel(const std::string& method, const Dataset&
   return BuildWithFolds(method, dataset, settings, nullptr);
 }
 
+std::function<std::unique_ptr<AlloyModel>(const std::string& method, const Dataset& training)>
+SharedFitBuilder(const color::Colorimeter& colorimeter) {
+  FitSettings settings;
+  settings.colorimeter = &colorimeter;
+  settings.memo = MakeFitMemo();
+  return [settings](const std::string& method, const Dataset& training) {
+    return BuildModel(method, training, settings);
+  };
+}
+
 std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings& settings) {
   // Simplest first: ties go to the earlier.
   const std::vector<std::string> order = {"eps-pchip", "eps-linear", "eps-spline",

@@ -435,13 +435,7 @@ PYBIND11_MODULE(_alloycolor, m) {
           validate::ValidationOptions options;
           // As `alloycolor validate`: fits score colour under D65, 2 degrees.
           const color::Colorimeter& d65 = GetColorimeter("D65", 2);
-          const std::shared_ptr<fit::FitMemo> memo = fit::MakeFitMemo();  // shared by the methods
-          options.build = [&d65, &memo](const std::string& method, const Dataset& training) {
-            fit::FitSettings settings;
-            settings.colorimeter = &d65;
-            settings.memo = memo;
-            return fit::BuildModel(method, training, settings);
-          };
+          options.build = fit::SharedFitBuilder(d65);
           options.methods = methods;
           options.angles_deg = angles_deg;
           options.mode = mode;

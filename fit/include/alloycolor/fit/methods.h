@@ -8,6 +8,7 @@
 #ifndef ALLOYCOLOR_FIT_METHODS_H_
 #define ALLOYCOLOR_FIT_METHODS_H_
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -97,6 +98,12 @@ const std::vector<MethodBuilder>& Builders();
 // use.
 std::unique_ptr<AlloyModel> BuildModel(const std::string& method, const Dataset& dataset,
                                        const FitSettings& settings = {});
+
+// BuildModel for many fits of one job (the splits and methods of a validation report, as
+// validate::ModelBuilder): colours scored with `colorimeter`, which must outlive it, and
+// one FitMemo shared by every fit it makes.
+std::function<std::unique_ptr<AlloyModel>(const std::string& method, const Dataset& training)>
+SharedFitBuilder(const color::Colorimeter& colorimeter);
 
 }  // namespace alloycolor::fit
 

@@ -2,7 +2,7 @@
 // held-out samples, every method is built on the training samples only and predicts each
 // held-out composition; plain structs in, plain structs out, so the command line, the
 // report writers and the Python module all see the same numbers. The builder is passed in
-// (ValidationOptions::build, normally fit::BuildModel), so this library needs no solver.
+// (ValidationOptions::build, normally fit::SharedFitBuilder), so this library needs no solver.
 //
 // Metrics per method and held-out sample:
 //  - delta_e00[angle]: CIEDE2000 between the measured and the predicted colour of the
@@ -22,8 +22,6 @@
 // wavelengths, from AlloyModel::DrudeAt (the paper method's own interpolated tau and m*,
 // the other methods' eps inverted with eq. 11, 12 where it is invertible).
 
-#include <array>
-#include <cstdint>
 #ifndef ALLOYCOLOR_VALIDATE_VALIDATION_H_
 #define ALLOYCOLOR_VALIDATE_VALIDATION_H_
 

@@ -104,11 +104,9 @@ void Run(const FitOptions& o) {
     for (const auto& w : dataset.warnings) Warn(w);
   }
   if (!o.exclude_text.empty()) {
-    const std::vector<double> exclude = ParseCompositions(o.exclude_text, dataset.system);
-    for (double x : exclude) {
-      bool found = false;
-      for (const auto& s : dataset.samples) found |= std::abs(s.x_atomic - x) < 1e-9;
-      if (!found) throw Error("--exclude: no sample at x = " + std::to_string(x));
+    std::vector<double> exclude;
+    for (const Sample* s : SamplesAt(o.exclude_text, dataset, "--exclude")) {
+      exclude.push_back(s->x_atomic);
     }
     dataset = WithoutSamples(dataset, exclude);
   }
@@ -206,7 +204,8 @@ void RegisterFit(CLI::App& app) {
                   "Data set: folder with dataset.json, a manifest, or a bundled set's name")
       ->required();
   cmd->add_option("--exclude", o->exclude_text,
-                  "Leave out the samples at these compositions (comma-separated)");
+                  "Leave out the samples at these compositions (comma-separated; the manifest's "
+                  "numbers or 75at%, 75wt%, 18k)");
   cmd->add_option("--method", o->method,
                   "auto (default: every method scored by leave-one-composition-out on the "
                   "data, the best chosen and the table kept in the model file); " +

@@ -51,45 +51,17 @@ std::string Format(double x) {
   return buf;
 }
 
-std::string SampleList(const Dataset& dataset) {
-  std::string s;
-  for (const Sample& sample : dataset.samples) {
-    s += (s.empty() ? "" : ", ") + Format(sample.x_given);
-  }
-  return s;
-}
-
-// The held-out compositions of --holdout as atomic fractions of samples of the data set. A
-// plain number is matched to the samples' atomic fractions, or failing that to the numbers
-// the manifest gives (weight fractions in a weight-fraction manifest).
+// The held-out compositions of --holdout as atomic fractions of interior samples.
 std::vector<double> ParseHoldouts(const std::string& text, const Dataset& dataset) {
   std::vector<double> xs;
-  for (const std::string& part : SplitList(text)) {
-    if (part.empty()) throw Error("--holdout: empty composition in '" + text + "'");
-    const double x = ParseComposition(part, dataset.system);
-    const Sample* match = nullptr;
-    for (const Sample& s : dataset.samples) {
-      if (std::abs(s.x_atomic - x) <= 1e-9) match = &s;
-    }
-    if (!match) {
-      for (const Sample& s : dataset.samples) {
-        if (std::abs(s.x_given - x) <= 1e-9) match = &s;
-      }
-    }
-    if (!match) {
-      throw Error("--holdout: no sample at " + part + " in " + dataset.manifest_path +
-                  " (samples at " + SampleList(dataset) + ")");
-    }
+  for (const Sample* match : SamplesAt(text, dataset, "--holdout")) {
     if (match == &dataset.samples.front() || match == &dataset.samples.back()) {
-      throw Error("--holdout: " + part + " is an end sample (" + match->file +
+      throw Error("--holdout: " + Format(match->x_given) + " is an end sample (" + match->file +
                   "); every method would have to extrapolate to predict it, so it is kept "
                   "for training: hold out interior samples only");
     }
-    bool seen = false;
-    for (double y : xs) seen |= std::abs(y - match->x_atomic) <= 1e-9;
-    if (!seen) xs.push_back(match->x_atomic);
+    xs.push_back(match->x_atomic);
   }
-  if (xs.empty()) throw Error("--holdout: no composition given");
   return xs;
 }
 

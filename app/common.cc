@@ -2,7 +2,9 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
@@ -74,6 +76,33 @@ std::vector<double> ParseCompositions(const std::string& text, const AlloySystem
   }
   if (xs.empty()) throw Error("no composition given");
   return xs;
+}
+
+std::vector<const Sample*> SamplesAt(const std::string& text, const Dataset& dataset,
+                                     const std::string& option) {
+  const auto list = [&dataset] {
+    std::string s;
+    for (const Sample& sample : dataset.samples) {
+      char x[32];
+      std::snprintf(x, sizeof x, "%g", sample.x_given);
+      s += (s.empty() ? "" : ", ") + std::string(x);
+    }
+    return s;
+  };
+  std::vector<const Sample*> found;
+  for (std::string part : SplitComma(text)) {
+    const size_t b = part.find_first_not_of(" \t"), e = part.find_last_not_of(" \t");
+    part = b == std::string::npos ? "" : part.substr(b, e - b + 1);
+    if (part.empty()) throw Error(option + ": empty composition in '" + text + "'");
+    const Sample* match = FindSample(dataset, ParseComposition(part, dataset.system));
+    if (!match) {
+      throw Error(option + ": no sample at " + part + " in " + dataset.manifest_path +
+                  " (samples at " + list() + ")");
+    }
+    if (std::find(found.begin(), found.end(), match) == found.end()) found.push_back(match);
+  }
+  if (found.empty()) throw Error(option + ": no composition given");
+  return found;
 }
 
 std::vector<double> ParseNumberList(const std::string& text, const std::string& option) {

@@ -30,6 +30,13 @@ color::Colorimeter LoadColorimeter(const std::string& illuminant, int observer_d
 
 // Comma-separated compositions ("0.5,75wt%,18k") as atomic fractions of element a.
 std::vector<double> ParseCompositions(const std::string& text, const AlloySystem& system);
+// The samples of `dataset` at the comma-separated compositions of `text`, each once, in
+// the order given: a plain number matches a sample's atomic fraction or, failing that, the
+// number the manifest gives it (a weight fraction in a weight-fraction manifest); 75at%,
+// 75wt% and 18k as in ParseCompositions. Throws Error naming `option` and listing the
+// samples when a composition matches none.
+std::vector<const Sample*> SamplesAt(const std::string& text, const Dataset& dataset,
+                                     const std::string& option);
 // Comma-separated numbers, naming the option on error.
 std::vector<double> ParseNumberList(const std::string& text, const std::string& option);
 

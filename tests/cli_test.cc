@@ -195,6 +195,29 @@ TEST(Cli, FitSmoothInTheSpaceGiven) {
   }
 }
 
+// fit --exclude takes compositions as validate --holdout does: Cu-Zn's manifest gives weight
+// fractions, so a plain 0.85 is the sample its manifest calls 0.85 (85wt% Cu, 85.4 at%), the
+// same as 85wt%; a composition of no sample is refused naming the samples there are.
+TEST_F(BadInput, FitExcludesBySampleAsTheManifestNamesIt) {
+  std::vector<nlohmann::json> models;
+  for (const char* exclude : {"0.85", "85wt%"}) {
+    const std::string out = dir_ + "/ex" + std::to_string(models.size()) + ".json";
+    const RunResult r = RunProgram({"fit", "--data", "Cu-Zn", "--method", "eps-linear", "--exclude",
+                                    exclude, "--out", out, "--quiet"});
+    ASSERT_EQ(r.status, 0) << exclude << ": " << r.err;
+    std::ifstream in(out);
+    models.push_back(nlohmann::json::parse(in));
+  }
+  ASSERT_EQ(models[0]["training_samples"].size(), 4u) << models[0].dump();
+  EXPECT_EQ(models[0]["training_samples"], models[1]["training_samples"]);
+  for (const auto& sample : models[0]["training_samples"]) {
+    EXPECT_EQ(sample["file"].get<std::string>().find("Cu85"), std::string::npos) << sample.dump();
+  }
+  ExpectCleanError({"fit", "--data", "Cu-Zn", "--exclude", "0.5", "--out", dir_ + "/no.json"},
+                   {"--exclude", "no sample at 0.5", "0, 0.7, 0.85, 0.9, 1"});
+  EXPECT_FALSE(std::filesystem::exists(dir_ + "/no.json"));
+}
+
 TEST_F(BadInput, ModelFilesAndRefit) {
   const std::string model = dir_ + "/model.json";
   RunResult r = RunProgram({"fit", "--data", "Au-Ag", "--method", "smooth", "--exclude",

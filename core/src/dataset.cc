@@ -312,6 +312,15 @@ Dataset LoadDataset(const std::string& dir_or_manifest) {
   }
 }
 
+const Sample* FindSample(const Dataset& dataset, double x) {
+  for (const auto given : {false, true}) {
+    for (const Sample& s : dataset.samples) {
+      if (std::abs((given ? s.x_given : s.x_atomic) - x) <= kSameComposition) return &s;
+    }
+  }
+  return nullptr;
+}
+
 Dataset WithoutSamples(const Dataset& dataset, const std::vector<double>& exclude_x) {
   Dataset result = dataset;
   result.samples.clear();

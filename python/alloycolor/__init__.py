@@ -139,18 +139,19 @@ class Dataset:
 
     def _match(self, x) -> float:
         value = self._core.parse_composition(x) if isinstance(x, str) else float(x)
-        for known in self.x_atomic:
-            if abs(known - value) <= 1e-6:
-                return float(known)
+        known = self._core.sample_x(value)
+        if known is not None:
+            return known
         raise Error("%s has no sample at x = %s (samples at %s)" % (
             self.manifest_path, x, ", ".join("%g" % v for v in self.x_atomic)))
 
     def without(self, x: Iterable) -> "Dataset":
-        """The data set without the samples at compositions x (each must be a sample's)."""
+        """The data set without the samples at compositions x: each a sample's atomic
+        fraction, the number its manifest gives it, or a string such as "85wt%"."""
         return Dataset(_core_set=self._core.without([self._match(v) for v in x]))
 
     def select(self, x: Iterable) -> "Dataset":
-        """The data set with only the samples at compositions x."""
+        """The data set with only the samples at compositions x (as in :meth:`without`)."""
         keep = [self._match(v) for v in x]
         drop = [v for v in self.x_atomic if all(abs(v - k) > 1e-9 for k in keep)]
         return Dataset(_core_set=self._core.without(drop))

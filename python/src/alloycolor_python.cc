@@ -330,6 +330,11 @@ PYBIND11_MODULE(_alloycolor, m) {
            [](const Dataset& d, const std::string& text) {
              return ParseComposition(text, d.system);
            })
+      .def("sample_x",
+           [](const Dataset& d, double x) -> py::object {
+             const Sample* s = FindSample(d, x);
+             return s ? py::cast(s->x_atomic) : py::none();
+           })
       .def("without", [](const Dataset& d, const std::vector<double>& exclude_x) {
         return WithoutSamples(d, exclude_x);
       });

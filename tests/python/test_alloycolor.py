@@ -191,6 +191,15 @@ def test_validation_equals_command_line(binary, au_ag, tmp_path):
 
 # ---- optical constants ---------------------------------------------------------------------
 
+def test_samples_are_named_as_the_manifest_names_them():
+    # Cu-Zn's manifest gives weight fractions: 0.85 is its 85wt% sample (85.4 at% Cu).
+    brass = ac.Dataset("Cu-Zn")
+    by_number, by_weight = brass.without([0.85]), brass.without(["85wt%"])
+    assert len(by_number) == len(brass) - 1
+    assert list(by_number.x_atomic) == list(by_weight.x_atomic)
+    assert abs(brass.select([0.85]).x_atomic[0] - 0.854) < 1e-3
+
+
 def test_read_nk_equals_file_rows():
     path = DATA / "Au-Ag" / "Rioux-Au50Ag50.yml"
     lam, N = read_rioux_yaml(path)
@@ -267,6 +276,8 @@ def test_errors_are_value_errors_naming_the_culprit(au_ag, tmp_path):
         model.color(0.5, angle_deg=95)
     with pytest.raises(ac.Error, match="0.45"):
         ac.validate(au_ag, holdout=[0.45])
+    with pytest.raises(ac.Error, match="0.5"):
+        ac.Dataset("Cu-Zn").without([0.5])
     with pytest.raises(ac.Error, match="ellipse"):
         model.render(0.5, shape="ellipse")
     broken = tmp_path / "broken.json"

@@ -47,6 +47,11 @@ struct Dataset {
 // Accepts a folder holding dataset.json or the manifest file itself.
 Dataset LoadDataset(const std::string& dir_or_manifest);
 
+// The sample at composition x: the one whose atomic fraction is x (within 1e-9) or,
+// failing that, whose number in the manifest is (a weight fraction in a weight-fraction
+// manifest); null when there is none.
+const Sample* FindSample(const Dataset& dataset, double x);
+
 // The samples whose x_atomic is not within 1e-9 of any of exclude_x (atomic fractions).
 Dataset WithoutSamples(const Dataset& dataset, const std::vector<double>& exclude_x);
 

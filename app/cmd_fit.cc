@@ -208,7 +208,9 @@ void RegisterFit(CLI::App& app) {
                   "numbers or 75at%, 75wt%, 18k)");
   cmd->add_option("--method", o->method,
                   "auto (default: every method scored by leave-one-composition-out on the "
-                  "data, the best chosen and the table kept in the model file); " +
+                  "data, the best chosen (with three compositions, whose one fold cannot "
+                  "compare the curves delivered, smooth) and the table kept in the model "
+                  "file); " +
                       MethodsHelp())
       ->capture_default_str();
   cmd->add_option("--out", o->out, "Model file to write (written atomically)")->required();

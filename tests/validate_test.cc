@@ -380,8 +380,7 @@ TEST(AutoMethod, ChoosesTheLowestLeaveOneOutScoreAndRecordsTheTable) {
 // and fits the two ends, where the physical model can only be degree 1, while it is
 // delivered at degree 2. That fold scores another model, so auto leaves physical unscored
 // (on this fold its degree-1 fit beat the line, 1.1 against 6.0, and was taken; delivered,
-// it erred 5.4 at 71 % and 85 % against eps-pchip's 2.9) and takes eps-pchip, the simplest
-// of the methods that tie on two samples.
+// it erred 5.4 at 71 % and 85 % against eps-pchip's 2.9) and, with one fold, takes smooth.
 TEST(AutoMethod, DoesNotScoreThePhysicalModelOnFoldsTooSmallForItsDegree) {
   const std::string dir = MakeTempDir();
   for (const char* f : {"Werner-Zn100.yml", "Querry-Cu90Zn10.yml", "Querry-Cu100.yml"}) {
@@ -396,7 +395,7 @@ TEST(AutoMethod, DoesNotScoreThePhysicalModelOnFoldsTooSmallForItsDegree) {
   ASSERT_EQ(fit.status, 0) << fit.err;
   std::ifstream in(dir + "/a.json");
   const nlohmann::json model = nlohmann::json::parse(in);
-  EXPECT_EQ(model["method"], "eps-pchip");
+  EXPECT_EQ(model["method"], "smooth");
   bool seen = false;
   for (const auto& row : model["fit"]["selection"]["scores"]) {
     if (row["method"] != "physical") continue;
@@ -442,6 +441,95 @@ TEST(AutoMethod, TakesTheSimplerMethodWithinTheFoldsScatter) {
   const std::string reason = model["fit"]["selection"]["reason"];
   EXPECT_NE(reason.find("one standard error"), std::string::npos) << reason;
   EXPECT_NE(reason.find("smooth"), std::string::npos) << reason;
+}
+
+// A data set of the given bundled Nb-Sn samples (x: the manifest's numbers) in a new folder.
+std::string NbSnSubset(const std::vector<std::pair<double, std::string>>& samples) {
+  const std::string dir = MakeTempDir();
+  std::string list;
+  for (const auto& [x, file] : samples) {
+    fs::copy_file(DataDir() + "/Nb-Sn/" + file, dir + "/" + file);
+    list += (list.empty() ? "" : ", ") + std::string("{\"x\": ") + std::to_string(x) +
+            ", \"file\": \"" + file + "\"}";
+  }
+  testing::WriteText(dir + "/dataset.json",
+                     R"({"system": {"a": "Sn", "b": "Nb"}, "composition": "weight_fraction_a",
+                         "samples": [)" + list + "]}");
+  return dir;
+}
+
+// The one-standard-error rule from two folds: Nb-Sn at 0, 6, 34 and 100 wt% Sn. eps-spline's
+// leave-one-out mean is 40 % below eps-pchip's, but the two folds' differences disagree
+// (their mean lies within one standard error, from the folds' scores by hand), so auto
+// takes eps-pchip. On the five samples held back from this subset, eps-spline errs more.
+TEST(AutoMethod, WeighsALeadByTheScatterOfTwoFolds) {
+  const std::string dir = NbSnSubset({{0.0, "Golovashkin-Nb-293K.yml"},
+                                      {0.06, "Golovashkin-06.yml"},
+                                      {0.34, "Golovashkin-34.yml"},
+                                      {1.0, "Golovashkin-Sn-293K.yml"}});
+  const RunResult fit = RunProgram({"fit", "--data", dir, "--quiet", "--out", dir + "/a.json"});
+  ASSERT_EQ(fit.status, 0) << fit.err;
+  std::ifstream in(dir + "/a.json");
+  const nlohmann::json model = nlohmann::json::parse(in);
+  const RunResult loo = RunProgram({"validate", "--data", dir, "--loo", "--methods",
+                                    "eps-pchip,eps-spline", "--out", dir + "/v", "--quiet"});
+  ASSERT_EQ(loo.status, 0) << loo.err;
+  std::ifstream rin(dir + "/v/report.json");
+  const nlohmann::json report = nlohmann::json::parse(rin);
+  std::vector<double> d;
+  double pchip = 0, spline = 0;
+  for (const auto& h : report["holdouts"]) {
+    const double a = h["results"]["eps-pchip"]["reflectance_rms"].get<double>();
+    const double b = h["results"]["eps-spline"]["reflectance_rms"].get<double>();
+    d.push_back(a - b);
+    pchip += a;
+    spline += b;
+  }
+  ASSERT_EQ(d.size(), 2u);
+  ASSERT_GT(pchip, 1.10 * spline);  // the 10 % rule alone would take eps-spline
+  const double mean = (d[0] + d[1]) / 2, se = std::abs(d[0] - d[1]) / 2;
+  ASSERT_LE(mean, se);
+  EXPECT_EQ(model["method"], "eps-pchip");
+  const std::string reason = model["fit"]["selection"]["reason"];
+  EXPECT_NE(reason.find("one standard error"), std::string::npos) << reason;
+  const RunResult held = RunProgram(
+      {"validate", "--data", "Nb-Sn", "--holdout", "0.22,0.28,0.3,0.4,0.55", "--methods",
+       "eps-pchip,eps-spline", "--out", dir + "/h", "--quiet"});
+  ASSERT_EQ(held.status, 0) << held.err;
+  std::ifstream hin(dir + "/h/report.json");
+  const nlohmann::json h = nlohmann::json::parse(hin)["summary"];
+  EXPECT_LT(h["reflectance_rms"]["eps-pchip"]["mean"].get<double>(),
+            h["reflectance_rms"]["eps-spline"]["mean"].get<double>());
+}
+
+// One fold (three compositions: Au-Ag at 0, 10 and 100 at% Au): paper's straight line scores
+// lowest on it, but auto takes smooth and says why; held out, the other eight samples
+// are far better predicted by smooth (auto) than by paper, and better than by eps-linear.
+TEST(AutoMethod, TakesSmoothWithOneFold) {
+  const std::string dir = MakeTempDir();
+  const std::string held_out = "0.2,0.3,0.4,0.5,0.6,0.7,0.8,0.9";
+  const RunResult fit = RunProgram({"fit", "--data", "Au-Ag", "--exclude", held_out, "--quiet",
+                                    "--out", dir + "/a.json"});
+  ASSERT_EQ(fit.status, 0) << fit.err;
+  std::ifstream in(dir + "/a.json");
+  const nlohmann::json model = nlohmann::json::parse(in);
+  EXPECT_EQ(model["method"], "smooth");
+  std::map<std::string, double> score;
+  for (const auto& row : model["fit"]["selection"]["scores"]) {
+    if (row.contains("mean")) score[row["method"]] = row["mean"].get<double>();
+  }
+  ASSERT_LT(score["paper"] * 1.10, score["smooth"]);  // the fold alone would take paper
+  const std::string reason = model["fit"]["selection"]["reason"];
+  EXPECT_NE(reason.find("one fold"), std::string::npos) << reason;
+  const RunResult held =
+      RunProgram({"validate", "--data", "Au-Ag", "--holdout", held_out, "--methods",
+                  "paper,eps-linear,auto", "--angles", "0", "--out", dir + "/h", "--quiet"});
+  ASSERT_EQ(held.status, 0) << held.err;
+  std::ifstream hin(dir + "/h/report.json");
+  const nlohmann::json summary = nlohmann::json::parse(hin)["summary"]["delta_e00_0"];
+  const double automatic = summary["auto"]["mean"], linear = summary["eps-linear"]["mean"];
+  EXPECT_LT(automatic, linear);
+  EXPECT_LT(5 * automatic, summary["paper"]["mean"].get<double>());
 }
 
 // A method that fails on every split (the physical fit refuses Querry's zinc) is reported

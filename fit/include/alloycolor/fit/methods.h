@@ -66,11 +66,13 @@ struct MethodBuilder {
 // samples as `validate` scores them (mean CIEDE2000 at normal incidence, or reflectance RMS
 // for data without colour); the simplest method whose mean lies within 10 % of the lowest,
 // or above it by no more than one standard error of their fold-by-fold differences (from
-// three folds), wins (simplest first: eps-pchip, eps-linear, eps-spline, paper, smooth,
+// two folds), wins (simplest first: eps-pchip, eps-linear, eps-spline, paper, smooth,
 // physical), since leave-one-out with few samples flatters the flexible methods. The
 // physical model is not scored where its folds cannot fit its composition degree (three
-// compositions: degree 2, its folds' two samples only a line). With fewer than three
-// compositions nothing can be held out and eps-pchip is chosen (with two samples every
+// compositions: degree 2, its folds' two samples only a line). With three compositions
+// the one fold predicts the middle from the ends, where every interpolation is a straight
+// line, so it cannot compare the curves delivered: smooth is chosen (unless it failed).
+// With fewer, nothing can be held out and eps-pchip is chosen (with two samples every
 // interpolation is the line). The chosen model carries the table (FitSummary::selection).
 inline constexpr const char* kAutoMethod = "auto";
 std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings& settings);

@@ -156,7 +156,7 @@ class Dataset:
         drop = [v for v in self.x_atomic if all(abs(v - k) > 1e-9 for k in keep)]
         return Dataset(_core_set=self._core.without(drop))
 
-    def fit(self, method: str = "smooth", **options) -> "Model":
+    def fit(self, method: str = "auto", **options) -> "Model":
         """Fits a model; see :func:`alloycolor.fit`."""
         return fit(self, method, **options)
 
@@ -259,11 +259,15 @@ def _optional(value, default):
     return default if value is None else value
 
 
-def fit(dataset: Union[Dataset, str], method: str = "smooth", *, degree: Optional[int] = None,
+def fit(dataset: Union[Dataset, str], method: str = "auto", *, degree: Optional[int] = None,
         smoothing: Optional[float] = None, space: Optional[str] = None, terms: str = "auto",
         lambda_range_nm: Optional[Sequence[float]] = None, covariance: bool = True,
         progress: Optional[Callable[[str], None]] = None) -> Model:
     """Fits ``method`` (see :func:`methods`) to a data set, as ``alloycolor fit`` does.
+
+    method: one of :func:`methods`, or "auto" (the default): every method scored by
+    leave-one-composition-out on the samples and the best chosen, as ``alloycolor fit``
+    chooses; the table behind the choice is in ``model.to_json()["fit"]["selection"]``.
 
     degree: composition degree (physical; default 2, or 1 where leave-one-out finds it clearly better; lowered where the fit leaves physics);
     smoothing: roughness penalty across composition (smooth; default: chosen
@@ -356,13 +360,16 @@ def color(source, x=None, angle_deg=0.0, illuminant="D65", observer=2, sigma=Fal
     return result
 
 
-def validate(dataset: Union[Dataset, str], methods: Sequence[str] = ("paper", "eps-linear",
-             "smooth"), holdout: Optional[Iterable] = None, angles_deg=(0.0, 45.0),
+def validate(dataset: Union[Dataset, str], methods: Union[str, Sequence[str]] = (
+             "paper", "eps-linear", "eps-pchip", "eps-spline", "smooth"),
+             holdout: Optional[Iterable] = None, angles_deg=(0.0, 45.0),
              illuminant: str = "D65", observer: int = 2, html=None, json=None,
              progress: Optional[Callable[[str], None]] = None) -> dict:
     """Held-out validation, as ``alloycolor validate``: each method is refitted without the
     held-out samples (``holdout``: their compositions; default: leave each interior sample
     out in turn) and scored against them (CIEDE2000 per angle, reflectance and n, k errors).
+    methods: names of :func:`methods` and "auto" (which runs its own leave-one-out inside
+    every split, on the training samples only), a comma-separated string of them, or "all".
     Returns the report's JSON document as Python objects; writes the JSON and the
     self-contained HTML page to the paths given as ``json`` and ``html`` (atomically)."""
     if not isinstance(dataset, Dataset):
@@ -382,7 +389,9 @@ def validate(dataset: Union[Dataset, str], methods: Sequence[str] = ("paper", "e
         if not chosen:
             raise Error("holdout: no composition given")
         splits, mode = [chosen], "holdout"
-    if isinstance(methods, str):
+    if methods == "all":
+        methods = [m["name"] for m in _core.methods()] + ["auto"]
+    elif isinstance(methods, str):
         methods = [m.strip() for m in methods.split(",")]
     return _core._validate(dataset._core, list(methods), splits, mode,
                            [float(a) for a in np.atleast_1d(angles_deg)], illuminant,

@@ -343,7 +343,7 @@ PYBIND11_MODULE(_alloycolor, m) {
                    const std::string& space, const std::string& terms, double lambda_from_nm,
                    double lambda_to_nm, double lambda_step_nm, bool covariance,
                    const py::object& progress) {
-    RequireMethod(method);
+    if (method != fit::kAutoMethod) RequireMethod(method);
     fit::FitSettings settings;
     settings.degree = degree;
     settings.smoothing = smoothing;
@@ -432,7 +432,9 @@ PYBIND11_MODULE(_alloycolor, m) {
            const std::vector<std::vector<double>>& splits, const std::string& mode,
            const std::vector<double>& angles_deg, const std::string& illuminant, int observer_deg,
            const std::string& html_path, const std::string& json_path, const py::object& progress) {
-          for (const std::string& method : methods) RequireMethod(method);
+          for (const std::string& method : methods) {
+            if (method != fit::kAutoMethod) RequireMethod(method);
+          }
           for (double a : angles_deg) {
             if (!(a >= 0 && a < 90))
               throw Error("angles_deg: " + std::to_string(a) + " lies outside 0-90 degrees");

@@ -189,6 +189,24 @@ def test_validation_equals_command_line(binary, au_ag, tmp_path):
             assert_same(mine["results"][method], theirs["results"][method])
 
 
+def test_auto_is_the_default_fit_and_chooses_as_the_command_line(binary, tmp_path):
+    # Cu-Zn (Werner's zinc): the same choice and table as `alloycolor fit` (whose default
+    # is auto too), and validate takes "auto" and "all".
+    data = os.path.join(DATA, "Cu-Zn", "dataset-werner-zn.json")
+    subprocess.run([binary, "fit", "--data", data, "--out", str(tmp_path / "a.json"),
+                    "--quiet"], check=True)
+    cli = json.loads((tmp_path / "a.json").read_text())
+    model = ac.fit(data)
+    mine = model.to_json()
+    assert model.method == cli["method"] != "auto"
+    assert mine["fit"]["selection"]["reason"] == cli["fit"]["selection"]["reason"]
+    assert [r.get("mean") for r in mine["fit"]["selection"]["scores"]] == \
+        [r.get("mean") for r in cli["fit"]["selection"]["scores"]]
+    report = ac.validate(data, methods="all", holdout=[0.85], angles_deg=[0])
+    expected = {m["name"] for m in ac.methods()} | {"auto"}
+    assert set(report["holdouts"][0]["results"]) == expected
+
+
 # ---- optical constants ---------------------------------------------------------------------
 
 def test_samples_are_named_as_the_manifest_names_them():

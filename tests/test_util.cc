@@ -10,6 +10,9 @@
 #include <fstream>
 #include <random>
 #include <stdexcept>
+#include <string>
+#include <system_error>
+#include <vector>
 
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/io.h"
@@ -19,12 +22,33 @@
 namespace alloycolor::testing {
 namespace {
 
+// The folders MakeTempDir made, removed with their contents when the test program ends.
+class TempDirs {
+ public:
+  ~TempDirs() {
+    for (const std::string& path : paths_) {
+      std::error_code ignored;  // a test may have left a folder unreadable: nothing to do
+      std::filesystem::remove_all(path, ignored);
+    }
+  }
+  void Add(std::string path) { paths_.push_back(std::move(path)); }
+
+ private:
+  std::vector<std::string> paths_;
+};
+
+TempDirs& Made() {
+  static TempDirs dirs;
+  return dirs;
+}
+
 }  // namespace
 
 std::string MakeTempDir() {
   std::string templ =
       (std::filesystem::temp_directory_path() / "alloycolor-test-XXXXXX").string();
   if (mkdtemp(templ.data()) == nullptr) throw std::runtime_error("mkdtemp failed");
+  Made().Add(templ);
   return templ;
 }
 

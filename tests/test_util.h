@@ -23,7 +23,8 @@ struct RunResult {
 // Runs the alloycolor program with the given arguments (no shell), capturing its output.
 RunResult RunProgram(const std::vector<std::string>& args);
 
-// A fresh empty folder under the system's temporary folder.
+// A fresh empty folder under the system's temporary folder, removed with its contents
+// when the test program ends.
 std::string MakeTempDir();
 
 // Writes text to path (overwriting).

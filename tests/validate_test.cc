@@ -518,6 +518,72 @@ TEST(AutoMethod, TakesSmoothWithOneFold) {
   EXPECT_LT(5 * automatic, summary["paper"]["mean"].get<double>());
 }
 
+// Au-Ag with scatter added as a real series has it: each sample's n and k times
+// 1 + c0 + c1 u + c2 sin(pi u) + c3 cos(pi u) (u the wavelength scaled to [0, 1]; the c
+// drawn once from a normal law of 2 % and written below), the 70 % sample left out. The
+// physical fit's degree-1 candidate stays physical but, finished, is not passive at the
+// silver end. auto (the default) records physical as not scored and chooses among the
+// others: before, the physical fit's error ended auto itself. The physical method alone is
+// refused with that one-line error.
+TEST(AutoMethod, GoesOnWhenThePhysicalFitIsRefused) {
+  static const double kScatter[11][8] = {  // per sample, x = 0, 0.1, ..., 1: c for n, for k
+      {0.0069, 0.0164, 0.0066, -0.0261, 0.0181, 0.0089, -0.0107, 0.0116},
+      {0.0073, 0.0059, 0.0006, 0.0109, -0.0147, -0.0033, -0.0096, 0.012},
+      {0.0008, -0.0058, -0.0156, -0.0051, 0.0002, -0.0055, 0.0259, 0.0201},
+      {-0.0542, -0.0378, -0.0035, -0.0084, 0.0043, 0.0043, 0.0424, -0.0222},
+      {-0.0076, 0.0409, 0.0129, 0.0133, -0.0103, -0.033, 0.0033, 0.0022},
+      {-0.0245, -0.0137, -0.0014, -0.0189, -0.002, 0.0019, 0.0007, -0.0101},
+      {0.0119, 0.0178, 0.0064, -0.0164, 0.0146, -0.01, 0.0176, -0.0214},
+      {0.0183, -0.0004, -0.025, -0.0063, 0.0011, 0.0055, -0.0196, -0.0221},
+      {0.004, -0.0093, 0.0047, 0.0152, -0.033, 0.0051, 0.0245, -0.006},
+      {-0.0162, 0.015, 0.0051, 0.0179, -0.0069, -0.0296, -0.0022, -0.0089},
+      {0.0155, 0.0039, -0.0326, -0.0239, 0.0177, 0.0136, -0.0128, 0.0}};
+  const std::string dir = MakeTempDir();
+  std::string list;
+  for (int i = 0; i <= 10; ++i) {
+    if (i == 7) continue;
+    const std::string name =
+        "Rioux-Au" + std::to_string(10 * i) + "Ag" + std::to_string(100 - 10 * i) + ".yml";
+    const NkSpectrum s = ReadNkFile(DataDir() + "/Au-Ag/" + name);
+    const double* c = kScatter[i];
+    std::string text = "DATA:\n  - type: tabulated nk\n    data: |\n";
+    for (size_t j = 0; j < s.lambda_nm.size(); ++j) {
+      const double u = (s.lambda_nm[j] - s.lambda_min_nm()) / (s.lambda_max_nm() - s.lambda_min_nm());
+      const double su = std::sin(M_PI * u), cu = std::cos(M_PI * u);
+      const double n = s.n[j] * (1 + (c[0] + c[1] * u + c[2] * su + c[3] * cu));
+      const double k = s.k[j] * (1 + (c[4] + c[5] * u + c[6] * su + c[7] * cu));
+      char line[96];
+      std::snprintf(line, sizeof line, "        %.17g %.17g %.17g\n", s.lambda_nm[j] / 1000, n, k);
+      text += line;
+    }
+    testing::WriteText(dir + "/" + name, text);
+    list += (list.empty() ? "" : ", ") + std::string("{\"x\": ") + std::to_string(0.1 * i) +
+            ", \"file\": \"" + name + "\"}";
+  }
+  testing::WriteText(dir + "/dataset.json",
+                     R"({"system": {"a": "Au", "b": "Ag"}, "composition": "atomic_fraction_a",
+                         "samples": [)" + list + "]}");
+  const RunResult fit =
+      RunProgram({"fit", "--data", dir, "--no-covariance", "--quiet", "--out", dir + "/a.json"});
+  ASSERT_EQ(fit.status, 0) << fit.err;
+  std::ifstream in(dir + "/a.json");
+  const nlohmann::json model = nlohmann::json::parse(in);
+  EXPECT_NE(model["method"], "physical");
+  bool refused = false;
+  for (const auto& row : model["fit"]["selection"]["scores"]) {
+    if (row["method"] != "physical") continue;
+    EXPECT_FALSE(row.contains("mean")) << row.dump();
+    refused = row.value("error", "").find("the physical fit") != std::string::npos;
+  }
+  EXPECT_TRUE(refused) << model["fit"]["selection"].dump();
+  const RunResult physical = RunProgram({"fit", "--data", dir, "--method", "physical",
+                                         "--no-covariance", "--quiet", "--out", dir + "/p.json"});
+  EXPECT_EQ(physical.status, 2);
+  EXPECT_EQ(CountLines(physical.err), 1) << physical.err;
+  EXPECT_NE(physical.err.find("the physical fit"), std::string::npos) << physical.err;
+  EXPECT_FALSE(fs::exists(dir + "/p.json"));
+}
+
 // A method that fails on every split (the physical fit refuses Querry's zinc) is reported
 // failed beside the others; the printed coverage counts agree with report.json.
 TEST(Validate, AMethodFailingEverywhereIsReportedBesideTheOthers) {

@@ -645,11 +645,22 @@ Scored BuildPhysicalChoosingDegree(const Dataset& dataset, const FitSettings& se
   const int degree = chosen.model->fit_summary().degree;
   {
     // Finished from where the candidate stopped, with the covariance; its folds' prediction
-    // error carries over (the folds started from the candidate).
+    // error carries over (the folds started from the candidate). The finished fit may still
+    // leave physics where the candidate had not (on Au-Ag with 2 % scatter added, eps2 < 0
+    // at the silver end at degree 1): then the physical model is refused, as any fit that
+    // leaves physics is, and auto goes on without it.
     FitSettings full = settings;
     full.degree = degree;
     full.start = chosen.model.get();
-    std::unique_ptr<AlloyModel> finished = Build("physical", dataset, full);
+    std::unique_ptr<AlloyModel> finished;
+    try {
+      finished = Build("physical", dataset, full);
+    } catch (const Error& e) {
+      Scored refused;
+      refused.score.method = "physical";
+      refused.score.error = e.what();
+      return refused;
+    }
     if (chosen.model->prediction_error().present()) {
       finished->set_prediction_error(chosen.model->prediction_error());
     }

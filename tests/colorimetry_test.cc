@@ -33,6 +33,7 @@ namespace alloycolor::color {
 namespace {
 
 using alloycolor::testing::DataDir;
+using alloycolor::testing::ErrorOf;
 
 // ---------------------------------------------------------------------------------------
 // CIEDE2000
@@ -224,23 +225,9 @@ TEST(ColorimeterTest, IlluminantNamesAreCaseInsensitive) {
   EXPECT_EQ(lower.White().X, Colorimeter::Load(DataDir(), "D65", 10).White().X);
 }
 
-// Returns the message of the Error thrown by f, or fails.
-template <typename F>
-std::string ErrorMessage(F f) {
-  try {
-    f();
-  } catch (const Error& error) {
-    const std::string message = error.what();
-    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-    return message;
-  }
-  ADD_FAILURE() << "no alloycolor::Error thrown";
-  return "";
-}
-
 TEST(ColorimeterTest, UnknownIlluminantListsTheValidNames) {
   const std::string message =
-      ErrorMessage([] { Colorimeter::Load(DataDir(), "D66", 2); });
+      ErrorOf([] { Colorimeter::Load(DataDir(), "D66", 2); });
   EXPECT_NE(message.find("D66"), std::string::npos) << message;
   for (const std::string& name : IlluminantNames()) {
     EXPECT_NE(message.find(name), std::string::npos) << message;
@@ -249,14 +236,14 @@ TEST(ColorimeterTest, UnknownIlluminantListsTheValidNames) {
 
 TEST(ColorimeterTest, UnknownObserverIsRefused) {
   const std::string message =
-      ErrorMessage([] { Colorimeter::Load(DataDir(), "D65", 5); });
+      ErrorOf([] { Colorimeter::Load(DataDir(), "D65", 5); });
   EXPECT_NE(message.find('5'), std::string::npos) << message;
   EXPECT_NE(message.find("10"), std::string::npos) << message;
 }
 
 TEST(ColorimeterTest, WrongReflectanceLengthIsRefused) {
   const Colorimeter colorimeter = Colorimeter::Load(DataDir(), "D65", 2);
-  const std::string message = ErrorMessage(
+  const std::string message = ErrorOf(
       [&] { colorimeter.ReflectanceToXYZ(std::vector<double>(81, 0.5)); });
   EXPECT_NE(message.find("81"), std::string::npos) << message;
   EXPECT_NE(message.find("95"), std::string::npos) << message;
@@ -306,7 +293,7 @@ TEST(ColorimeterTest, DamagedTablesNameTheFileAndLine) {
     const std::string dir = DataDirWithD65(c.text);
     const std::string path = dir + "/cie/illuminant-D65.csv";
     const std::string message =
-        ErrorMessage([&] { Colorimeter::Load(dir, "D65", 2); });
+        ErrorOf([&] { Colorimeter::Load(dir, "D65", 2); });
     EXPECT_NE(message.find(path), std::string::npos) << message;
     EXPECT_NE(message.find(c.expected_location), std::string::npos) << message;
     EXPECT_NE(message.find(c.expected_words), std::string::npos) << message;
@@ -317,7 +304,7 @@ TEST(ColorimeterTest, DamagedTablesNameTheFileAndLine) {
 TEST(ColorimeterTest, MissingTableIsNamed) {
   const std::string dir = alloycolor::testing::MakeTempDir();
   const std::string message =
-      ErrorMessage([&] { Colorimeter::Load(dir, "A", 2); });
+      ErrorOf([&] { Colorimeter::Load(dir, "A", 2); });
   EXPECT_NE(message.find(dir + "/cie/illuminant-A.csv"), std::string::npos)
       << message;
   std::filesystem::remove_all(dir);

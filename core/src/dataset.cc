@@ -321,6 +321,14 @@ const Sample* FindSample(const Dataset& dataset, double x) {
   return nullptr;
 }
 
+std::vector<double> DistinctCompositions(const Dataset& dataset) {
+  std::vector<double> xs;
+  for (const Sample& s : dataset.samples) xs.push_back(s.x_atomic);
+  std::sort(xs.begin(), xs.end());
+  xs.erase(std::unique(xs.begin(), xs.end()), xs.end());
+  return xs;
+}
+
 Dataset WithoutSamples(const Dataset& dataset, const std::vector<double>& exclude_x) {
   Dataset result = dataset;
   result.samples.clear();

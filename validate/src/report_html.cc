@@ -349,6 +349,56 @@ void WriteDrude(const ValidationReport& report, const SplitResult& split, int sp
   }
 }
 
+// Each method's model against its own training samples, beside its error on the samples
+// held out of this split: a model that misses the samples it was given says so here.
+void WriteInSample(const ValidationReport& report, const SplitResult& split, int s,
+                   std::ostringstream& html) {
+  if (split.in_sample.empty()) return;
+  html << "<table><tr><th>method</th><th>in-sample, mean</th><th>in-sample, worst (sample)</th>"
+          "<th>held out, mean</th></tr>";
+  for (const auto& [method, rows] : split.in_sample) {
+    double sum = 0, worst = -1;
+    int count = 0;
+    std::string worst_file;
+    bool colour = true;
+    for (const InSampleError& r : rows) {
+      colour = colour && std::isfinite(r.delta_e00);
+    }
+    for (const InSampleError& r : rows) {
+      const double v = colour ? r.delta_e00 : r.reflectance_rms;
+      if (!std::isfinite(v)) continue;
+      sum += v;
+      ++count;
+      if (v > worst) {
+        worst = v;
+        worst_file = r.file;
+      }
+    }
+    double held_sum = 0;
+    int held = 0;
+    for (const HoldoutResult& h : report.holdouts) {
+      if (h.split != s) continue;
+      const auto it = h.results.find(method);
+      if (it == h.results.end() || !it->second.error.empty()) continue;
+      const double v = colour && !it->second.delta_e00.empty() ? it->second.delta_e00[0]
+                                                                : it->second.reflectance_rms;
+      if (!std::isfinite(v)) continue;
+      held_sum += v;
+      ++held;
+    }
+    const char* unit = colour ? "dE00 " : "R RMS ";
+    html << "<tr><td>" << EscapeXml(method) << "</td><td>"
+         << (count ? unit + Num(sum / count, "%.3g") : std::string("-")) << "</td><td>"
+         << (count ? unit + Num(worst, "%.3g") + " (" + EscapeXml(worst_file) + ")"
+                   : std::string("-"))
+         << "</td><td>" << (held ? unit + Num(held_sum / held, "%.3g") : std::string("-"))
+         << "</td></tr>";
+  }
+  html << "</table><p class=\"note\">In-sample: each model against the samples it was "
+          "trained on (normal incidence): a model that misses its own samples contradicts the "
+          "data it was given.</p>";
+}
+
 void WriteHoldout(const ValidationReport& report, const HoldoutResult& h, int index,
                   std::ostringstream& html) {
   html << "<h4>Held out: " << XLabel(report, h) << " &mdash; " << EscapeXml(h.file) << "</h4>";
@@ -534,6 +584,7 @@ std::string ValidationHtml(const ValidationReport& report) {
       for (const std::string& w : warnings) html << "<li>" << EscapeXml(w) << "</li>";
       html << "</ul></details>";
     }
+    WriteInSample(report, split, static_cast<int>(s), html);
     for (const HoldoutResult& h : report.holdouts) {
       if (h.split == static_cast<int>(s)) WriteHoldout(report, h, holdout_index++, html);
     }

@@ -36,6 +36,18 @@ nlohmann::json ValidationJson(const ValidationReport& report) {
     if (!s.errors.empty()) split["errors"] = s.errors;
     split["warnings"] = s.warnings;
     split["choices"] = s.choices;
+    nlohmann::json in_sample = nlohmann::json::object();
+    for (const auto& [method, rows] : s.in_sample) {
+      nlohmann::json list = nlohmann::json::array();
+      for (const InSampleError& r : rows) {
+        list.push_back({{"x", r.x_atomic},
+                        {"file", r.file},
+                        {"delta_e00", OrNull(r.delta_e00)},
+                        {"reflectance_rms", OrNull(r.reflectance_rms)}});
+      }
+      in_sample[method] = list;
+    }
+    split["in_sample"] = in_sample;
     nlohmann::json drude = nlohmann::json::array();
     for (const DrudeCurve& c : s.drude) {
       nlohmann::json curve = {{"lambda_nm", c.lambda_nm}};

@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "alloycolor/color/material_color.h"
+#include "alloycolor/color/sample_error.h"
 #include "alloycolor/core/composition.h"
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/parallel.h"
@@ -24,35 +25,11 @@
 namespace alloycolor::validate {
 namespace {
 
-constexpr double kMetricStepNm = 5.0;
 constexpr double kSameX = 1e-9;
 
 
 // ---------------------------------------------------------------------------------------
 // Computation.
-
-// The wavelengths on which n, k and reflectance errors are taken (see report.h).
-std::vector<double> MetricGrid(const AlloyModel& model, const NkSpectrum& measured,
-                               std::string* description) {
-  const double lo = std::max(model.lambda_min_nm(), measured.lambda_min_nm());
-  const double hi = std::min(model.lambda_max_nm(), measured.lambda_max_nm());
-  if (lo <= kVisibleMinNm + 1e-9 && hi >= kVisibleMaxNm - 1e-9) {
-    *description = "380-780 nm, 5 nm step";
-    return UniformGrid(kVisibleMinNm, kVisibleMaxNm, kMetricStepNm);
-  }
-  std::vector<double> grid;
-  for (double l : measured.lambda_nm) {
-    if (l >= lo - 1e-9 && l <= hi + 1e-9) grid.push_back(std::clamp(l, lo, hi));
-  }
-  if (grid.size() < 2) {
-    throw Error(measured.source + " and the " + model.method() + " model share under two " +
-                "wavelengths (" + Num(lo) + "-" + Num(hi) + " nm)");
-  }
-  *description = "the measured sample's " + std::to_string(grid.size()) + " wavelengths in " +
-                 Num(grid.front()) + "-" + Num(grid.back()) +
-                 " nm (the data do not cover 380-780 nm)";
-  return grid;
-}
 
 std::vector<std::complex<double>> MeasuredIndex(const NkSpectrum& nk,
                                                 const std::vector<double>& grid) {
@@ -188,7 +165,7 @@ MethodResult Evaluate(const AlloyModel& model, const Sample& sample,
                       HoldoutResult* holdout) {
   MethodResult r;
   std::string description;
-  r.lambda_nm = MetricGrid(model, sample.nk, &description);
+  r.lambda_nm = color::MetricGrid(model, sample.nk, &description);
   const Spectra predicted = SpectraOf(model.Index(sample.x_atomic, r.lambda_nm));
   const Spectra measured = SpectraOf(MeasuredIndex(sample.nk, r.lambda_nm));
   if (holdout->lambda_nm.empty()) {
@@ -304,6 +281,7 @@ ValidationReport ComputeValidation(const Dataset& dataset,
       }
       if (model) {
         split.warnings[method] = model->warnings();
+        split.in_sample[method] = model->in_sample();
         if (model->fit_summary().selection.present()) {
           split.choices[method] = model->fit_summary().selection.reason;
         }

@@ -55,6 +55,9 @@ const Sample* FindSample(const Dataset& dataset, double x);
 // The samples whose x_atomic is not within 1e-9 of any of exclude_x (atomic fractions).
 Dataset WithoutSamples(const Dataset& dataset, const std::vector<double>& exclude_x);
 
+// The samples' compositions (atomic fraction), each once, increasing.
+std::vector<double> DistinctCompositions(const Dataset& dataset);
+
 }  // namespace alloycolor
 
 #endif  // ALLOYCOLOR_CORE_DATASET_H_

@@ -94,6 +94,8 @@ struct SplitResult {
   std::vector<double> train_x, holdout_x;
   std::map<std::string, std::string> errors;                 // method -> why it could not be built
   std::map<std::string, std::vector<std::string>> warnings;  // method -> its warnings
+  // method -> its model against its own training samples (AlloyModel::in_sample)
+  std::map<std::string, std::vector<InSampleError>> in_sample;
   // method -> what it chose on this split's training samples (auto: the method and why)
   std::map<std::string, std::string> choices;
   std::vector<DrudeCurve> drude;

@@ -151,6 +151,35 @@ double PredictionError::ScaleAt(double l) const {
   return scale[hi - 1] + (scale[hi] - scale[hi - 1]) * t;
 }
 
+namespace {
+
+// Position of l on an increasing grid: the interval's upper index and the fraction.
+std::pair<size_t, double> GridPosition(const std::vector<double>& grid, double l) {
+  if (l <= grid.front()) return {1, 0.0};
+  if (l >= grid.back()) return {grid.size() - 1, 1.0};
+  const size_t hi = std::upper_bound(grid.begin(), grid.end(), l) - grid.begin();
+  return {hi, (l - grid[hi - 1]) / (grid[hi] - grid[hi - 1])};
+}
+
+std::complex<double> SpectrumAt(const std::vector<double>& grid,
+                                const std::vector<std::complex<double>>& values, double l) {
+  const auto [hi, t] = GridPosition(grid, l);
+  return values[hi - 1] + (values[hi] - values[hi - 1]) * t;
+}
+
+}  // namespace
+
+std::complex<double> PredictionError::MisfitAt(double x, double l) const {
+  if (misfit.empty() || misfit_lambda_nm.empty()) return 0.0;
+  const auto [hi, t] = GridPosition(compositions, x);
+  return SpectrumAt(misfit_lambda_nm, misfit[hi - 1], l) * (1 - t) +
+         SpectrumAt(misfit_lambda_nm, misfit[hi], l) * t;
+}
+
+std::complex<double> PredictionError::ScatterAt(size_t r, double l) const {
+  return SpectrumAt(misfit_lambda_nm, scatter[r], l);
+}
+
 void AlloyModel::set_prediction_error(PredictionError e) {
   const std::string where = "uncertainty.";
   if (e.lambda_nm.size() < 2 || e.scale.size() != e.lambda_nm.size()) {
@@ -182,6 +211,34 @@ void AlloyModel::set_prediction_error(PredictionError e) {
   if (!(e.calibration > 0 && e.calibration <= 1e3)) {
     throw Error(where + "calibration: must lie in (0, 1000]");
   }
+  if (!(e.precision >= 0 && e.precision <= 1)) throw Error(where + "precision: must lie in 0..1");
+  const auto check_spectra = [&](const char* key,
+                                 const std::vector<std::vector<std::complex<double>>>& spectra) {
+    for (const auto& v : spectra) {
+      if (v.size() != e.misfit_lambda_nm.size()) {
+        throw Error(where + key + ": one value per wavelength of misfit_lambda_nm");
+      }
+      for (const auto& c : v) {
+        // A relative error of 100 already says "no idea"; more overflows the draws.
+        if (!(std::abs(c.real()) <= 100 && std::abs(c.imag()) <= 100)) {
+          throw Error(where + key + ": values must lie in -100..100");
+        }
+      }
+    }
+  };
+  if (!e.misfit.empty() || !e.scatter.empty()) {
+    if (e.misfit_lambda_nm.size() < 2) throw Error(where + "misfit_lambda_nm: two at least");
+    for (size_t j = 1; j < e.misfit_lambda_nm.size(); ++j) {
+      if (!(e.misfit_lambda_nm[j] > e.misfit_lambda_nm[j - 1])) {
+        throw Error(where + "misfit_lambda_nm: must increase");
+      }
+    }
+    if (!e.misfit.empty() && e.misfit.size() != e.compositions.size()) {
+      throw Error(where + "misfit: one spectrum per composition");
+    }
+    check_spectra("misfit", e.misfit);
+    check_spectra("scatter", e.scatter);
+  }
   prediction_error_ = std::move(e);
 }
 
@@ -193,13 +250,32 @@ std::vector<std::vector<std::complex<double>>> AlloyModel::PermittivityDraws(
   const double amplitude = e.calibration * e.Bump(x_atomic) / std::sqrt(2.0);
   std::vector<double> scale(lambda_nm.size());
   for (size_t i = 0; i < lambda_nm.size(); ++i) scale[i] = amplitude * e.ScaleAt(lambda_nm[i]);
+  // The misfit and scatter spectra on the draws' grid (relative to |eps|).
+  std::vector<std::complex<double>> misfit(lambda_nm.size(), 0.0);
+  std::vector<std::vector<std::complex<double>>> scatter(e.scatter.size());
+  for (size_t i = 0; i < lambda_nm.size(); ++i) misfit[i] = e.MisfitAt(x_atomic, lambda_nm[i]);
+  for (size_t r = 0; r < scatter.size(); ++r) {
+    for (double l : lambda_nm) scatter[r].push_back(e.ScatterAt(r, l));
+  }
   std::mt19937 rng(seed);
+  std::mt19937 precision_rng(seed + 1);  // apart, so that the scale's draws stay as they were
   std::normal_distribution<double> normal;
   std::vector<std::vector<std::complex<double>>> draws(count, centre);
   for (int d = 0; d < count; ++d) {
     const std::complex<double> z(normal(rng), normal(rng));
+    const double misfit_sign = d % 2 == 0 ? 1.0 : -1.0;
+    const double scatter_sign = (d / 2) % 2 == 0 ? 1.0 : -1.0;
+    const std::vector<std::complex<double>>* replicate =
+        scatter.empty() ? nullptr : &scatter[(d / 4) % scatter.size()];
+    std::complex<double> floor = 0.0;
+    if (e.precision > 0) {
+      floor = e.precision / std::sqrt(2.0) *
+              std::complex<double>(normal(precision_rng), normal(precision_rng));
+    }
     for (size_t i = 0; i < centre.size(); ++i) {
-      std::complex<double> v = centre[i] + scale[i] * std::abs(centre[i]) * z;
+      std::complex<double> relative = scale[i] * z + misfit_sign * misfit[i] + floor;
+      if (replicate != nullptr) relative += scatter_sign * (*replicate)[i];
+      std::complex<double> v = centre[i] + std::abs(centre[i]) * relative;
       if (v.imag() < 0) v.imag(0.0);  // a draw stays passive
       draws[d][i] = v;
     }
@@ -338,6 +414,7 @@ nlohmann::json AlloyModel::ToJson() const {
     nlohmann::json scores = nlohmann::json::array();
     for (const MethodScore& m : fit_summary_.selection.scores) {
       nlohmann::json row = {{"method", m.method}, {"folds", m.folds}};
+      if (m.ends > 0) row["ends"] = m.ends;
       if (m.error.empty()) {
         row["mean"] = m.mean;
         row["max"] = m.max;
@@ -365,6 +442,35 @@ nlohmann::json AlloyModel::ToJson() const {
         {"gap_exponent", e.gap_exponent},
         {"end_factor", e.end_factor},
         {"calibration", e.calibration}};
+    nlohmann::json& u = doc["uncertainty"];
+    if (e.precision > 0) u["precision"] = e.precision;
+    const auto spectra = [](const std::vector<std::vector<std::complex<double>>>& list) {
+      nlohmann::json a = nlohmann::json::array();
+      for (const auto& v : list) {
+        nlohmann::json re = nlohmann::json::array(), im = nlohmann::json::array();
+        for (const auto& c : v) {
+          re.push_back(c.real());
+          im.push_back(c.imag());
+        }
+        a.push_back({{"re", re}, {"im", im}});
+      }
+      return a;
+    };
+    if (!e.misfit.empty() || !e.scatter.empty()) {
+      u["misfit_lambda_nm"] = e.misfit_lambda_nm;
+      if (!e.misfit.empty()) u["misfit"] = spectra(e.misfit);
+      if (!e.scatter.empty()) u["scatter"] = spectra(e.scatter);
+    }
+  }
+  if (!in_sample_.empty()) {
+    nlohmann::json rows = nlohmann::json::array();
+    for (const InSampleError& r : in_sample_) {
+      nlohmann::json row = {{"x", r.x_atomic}, {"file", r.file}};
+      row["delta_e00"] = std::isfinite(r.delta_e00) ? nlohmann::json(r.delta_e00) : nullptr;
+      row["reflectance_rms"] = r.reflectance_rms;
+      rows.push_back(row);
+    }
+    doc["in_sample"] = rows;
   }
   doc["warnings"] = warnings_;
   return doc;
@@ -432,6 +538,25 @@ void AlloyModel::ReadCommon(const nlohmann::json& doc) {
                          String(Field(ts[i], "file", where), where + ".file"),
                          String(Field(ts[i], "checksum", where), where + ".checksum")});
   }
+  in_sample_.clear();
+  if (doc.contains("in_sample")) {
+    const nlohmann::json& rows = doc.at("in_sample");
+    if (!rows.is_array()) throw Error("in_sample: expected an array");
+    for (size_t i = 0; i < rows.size(); ++i) {
+      const std::string where = "in_sample[" + std::to_string(i) + "]";
+      InSampleError r;
+      r.x_atomic = Number(Field(rows[i], "x", where), where + ".x");
+      r.file = String(Field(rows[i], "file", where), where + ".file");
+      const nlohmann::json& de = Field(rows[i], "delta_e00", where);
+      r.delta_e00 = de.is_null() ? std::nan("") : Number(de, where + ".delta_e00");
+      r.reflectance_rms =
+          Number(Field(rows[i], "reflectance_rms", where), where + ".reflectance_rms");
+      if (!(r.reflectance_rms >= 0) || (std::isfinite(r.delta_e00) && !(r.delta_e00 >= 0))) {
+        throw Error(where + ": errors must be >= 0");
+      }
+      in_sample_.push_back(std::move(r));
+    }
+  }
   prediction_error_ = PredictionError{};
   if (doc.contains("uncertainty")) {
     const nlohmann::json& u = doc.at("uncertainty");
@@ -460,10 +585,36 @@ void AlloyModel::ReadCommon(const nlohmann::json& doc) {
       e.end_factor = Number(u["end_factor"], "uncertainty.end_factor");
     }
     const double folds = Number(Field(u, "folds", "uncertainty"), "uncertainty.folds");
-    if (folds != std::floor(folds) || folds < 1 || folds > 1e6) {
-      throw Error("uncertainty.folds: expected a whole number >= 1");
+    if (folds != std::floor(folds) || folds < 0 || folds > 1e6) {
+      throw Error("uncertainty.folds: expected a whole number >= 0");
     }
     e.folds = static_cast<int>(folds);
+    if (u.contains("precision")) e.precision = Number(u["precision"], "uncertainty.precision");
+    const auto spectra = [&](const char* key) {
+      std::vector<std::vector<std::complex<double>>> list;
+      const nlohmann::json& a = u.at(key);
+      const std::string where = std::string("uncertainty.") + key;
+      if (!a.is_array()) throw Error(where + ": expected an array");
+      for (size_t r = 0; r < a.size(); ++r) {
+        const std::string at = where + "[" + std::to_string(r) + "]";
+        const nlohmann::json& re = Field(a[r], "re", at);
+        const nlohmann::json& im = Field(a[r], "im", at);
+        if (!re.is_array() || !im.is_array() || re.size() != im.size()) {
+          throw Error(at + ": expected arrays re and im of one length");
+        }
+        std::vector<std::complex<double>> v;
+        for (size_t j = 0; j < re.size(); ++j) {
+          v.emplace_back(Number(re[j], at + ".re"), Number(im[j], at + ".im"));
+        }
+        list.push_back(std::move(v));
+      }
+      return list;
+    };
+    if (u.contains("misfit") || u.contains("scatter")) {
+      e.misfit_lambda_nm = numbers("misfit_lambda_nm");
+      if (u.contains("misfit")) e.misfit = spectra("misfit");
+      if (u.contains("scatter")) e.scatter = spectra("scatter");
+    }
     set_prediction_error(std::move(e));
   }
   fit_summary_ = FitSummary{};
@@ -502,6 +653,9 @@ void AlloyModel::ReadCommon(const nlohmann::json& doc) {
         MethodScore m;
         m.method = String(Field(scores[i], "method", where), where + ".method");
         m.folds = static_cast<int>(Number(Field(scores[i], "folds", where), where + ".folds"));
+        if (scores[i].contains("ends")) {
+          m.ends = static_cast<int>(Number(scores[i].at("ends"), where + ".ends"));
+        }
         if (scores[i].contains("error")) {
           m.error = String(scores[i].at("error"), where + ".error");
         } else {

@@ -122,6 +122,10 @@ int PhysicalLayout::Find(int term, const std::string& name) const {
   return -1;
 }
 
+const PhysicalModel* PhysicalModel::From(const AlloyModel* model) {
+  return dynamic_cast<const PhysicalModel*>(model);
+}
+
 PhysicalModel::PhysicalModel(const Dataset& dataset, double lambda_min_nm, double lambda_max_nm,
                              PhysicalLayout layout, std::vector<double> coeffs,
                              std::vector<double> covariance)

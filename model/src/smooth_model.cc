@@ -27,6 +27,10 @@ NodeBracket BracketOf(const std::vector<double>& grid, double l) {
 
 }  // namespace
 
+const SmoothModel* SmoothModel::From(const AlloyModel* model) {
+  return dynamic_cast<const SmoothModel*>(model);
+}
+
 const char* SmoothSpaceName(SmoothSpace space) {
   return space == SmoothSpace::kLogEps ? "log_eps" : "eps";
 }

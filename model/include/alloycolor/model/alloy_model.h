@@ -8,6 +8,7 @@
 //    "system": {"a": "Au", "b": "Ag"}, "composition": "atomic_fraction_a",
 //    "x_range": [lo, hi], "lambda_range_nm": [lo, hi],
 //    "training_samples": [{"x": ..., "x_given": ..., "file": ..., "checksum": ...}],
+//    "in_sample": [{"x": ..., "file": ..., "delta_e00": ..., "reflectance_rms": ...}],
 //    "parameters": {... method's own ...}, "fit": {... statistics ...},
 //    "warnings": [...]}
 // See docs/model-format.md.
@@ -41,6 +42,9 @@ struct MethodScore {
   double mean = 0;    // mean of the metric over the folds
   double max = 0;     // worst fold
   int folds = 0;
+  // The end compositions' samples scored by the model's own (in-sample) error, which no
+  // fold can hold out; counted in mean and max.
+  int ends = 0;
   std::string error;  // non-empty: the candidate could not be scored (why)
 };
 struct MethodSelection {
@@ -91,12 +95,39 @@ struct PredictionError {
   // one side only. From the folds (1 where they cannot tell; docs/model-format.md).
   double end_factor = 1;
   double calibration = 1;
-  int folds = 0;  // how many folds estimated it
+  int folds = 0;  // how many folds estimated it (0: scale is 0, the terms below remain)
+  // What the model misses at its own training compositions, and what one measurement can
+  // resolve, added to each draw of eps so that no prediction claims more than the data
+  // allow (docs/model-format.md):
+  //  - misfit[i][j]: (measured eps - model eps) / |model eps| at compositions[i] (the mean
+  //    of the samples there) and misfit_lambda_nm[j]; between compositions interpolated
+  //    linearly, times one sign (+1, -1 in turn) per draw, so that half the draws at a
+  //    training composition land on the measurement the model misses;
+  //  - scatter[r][j]: a replicate sample's relative deviation from its composition's mean
+  //    (times sqrt(n / (n - 1))), taken in turn by the draws with a sign of their own;
+  //  - precision: a measurement's relative eps error (the resolution of the data's
+  //    printed digits), a complex normal term at every composition.
+  std::vector<double> misfit_lambda_nm;  // increasing; empty: no misfit nor scatter
+  std::vector<std::vector<std::complex<double>>> misfit, scatter;
+  double precision = 0;
   bool present() const { return !lambda_nm.empty(); }
   // B(x) above.
   double Bump(double x_atomic) const;
   // scale interpolated linearly in wavelength (held at the ends).
   double ScaleAt(double lambda_nm) const;
+  // The misfit at composition x, interpolated in wavelength (zero without one).
+  std::complex<double> MisfitAt(double x_atomic, double lambda_nm) const;
+  // Scatter spectrum r at a wavelength.
+  std::complex<double> ScatterAt(size_t r, double lambda_nm) const;
+};
+
+// A model against one of its own training samples (color/sample_error.h metrics): what
+// `fit` measured when it built the model, kept in the model file.
+struct InSampleError {
+  double x_atomic = 0;
+  std::string file;
+  double delta_e00 = 0;  // NaN for data without colour (null in the file)
+  double reflectance_rms = 0;
 };
 
 // Uncertainty is propagated by draws of eps: this many, from this seed, wherever the
@@ -213,8 +244,11 @@ class AlloyModel {
   double lambda_max_nm() const { return lambda_max_nm_; }
   const std::vector<TrainingSample>& training_samples() const { return training_; }
   const std::vector<std::string>& warnings() const { return warnings_; }
+  void AddWarning(std::string warning) { warnings_.push_back(std::move(warning)); }
   const FitSummary& fit_summary() const { return fit_summary_; }
   void set_fit_summary(FitSummary summary) { fit_summary_ = std::move(summary); }
+  const std::vector<InSampleError>& in_sample() const { return in_sample_; }
+  void set_in_sample(std::vector<InSampleError> rows) { in_sample_ = std::move(rows); }
   const PredictionError& prediction_error() const { return prediction_error_; }
   // Throws Error naming the field when the values are not usable.
   void set_prediction_error(PredictionError error);
@@ -240,7 +274,6 @@ class AlloyModel {
   // Reads the common fields back from a model file.
   void ReadCommon(const nlohmann::json& doc);
   void CheckLambda(const std::vector<double>& lambda_nm) const;
-  void AddWarning(std::string warning) { warnings_.push_back(std::move(warning)); }
 
  private:
   AlloySystem system_{};
@@ -251,6 +284,7 @@ class AlloyModel {
   std::vector<std::string> warnings_;
   FitSummary fit_summary_;
   PredictionError prediction_error_;
+  std::vector<InSampleError> in_sample_;
   std::string source_;
 };
 

@@ -275,6 +275,8 @@ struct PhysicalParameterValue {
 
 class PhysicalModel : public AlloyModel {
  public:
+  // `model` as a physical model, or null when it is of another method.
+  static const PhysicalModel* From(const AlloyModel* model);
   // coeffs: layout.num_coefficients() values, parameter-major; covariance (row-major,
   // may be empty) their covariance.
   PhysicalModel(const Dataset& dataset, double lambda_min_nm, double lambda_max_nm,

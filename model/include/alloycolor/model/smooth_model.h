@@ -55,6 +55,8 @@ class SmoothModel : public AlloyModel {
               SmoothSpace space, std::vector<std::vector<double>> part1,
               std::vector<std::vector<double>> part2, double smoothing);
   SmoothModel(const nlohmann::json& doc, const std::string& source);
+  // `model` as a smooth model, or null when it is of another method.
+  static const SmoothModel* From(const AlloyModel* model);
 
   std::string method() const override { return "smooth"; }
   std::vector<std::complex<double>> Permittivity(

@@ -1,7 +1,13 @@
 // Building a model from a data set, for every method of the registry (model/registry.h):
-// the builders sit here, under the same names, because fitting is the only place that
-// builds a model from data. Baselines that keep the samples (paper, eps-linear) need no
-// solver; the fitted methods run their Ceres fits (smooth_fit.h, physical_fit.h).
+// fitting is the only place that builds a model from data, so the built-in methods'
+// builders sit here (fit/src/builders.cc) and are attached to their registry entries before
+// the first build. Baselines that keep the samples (paper, eps-linear) need no solver; the
+// fitted methods run their Ceres fits (smooth_fit.h, physical_fit.h).
+//
+// The layout of the library: builders.cc (one builder per method), folds.cc (the
+// leave-one-composition-out folds and their held-out errors), prediction_error.cc (the
+// error bars from the folds and the in-sample misfit), selection.cc (`auto` and the
+// physical degree), methods.cc (BuildModel, which ties them together).
 //
 // FitSettings are the options a user can give any method; a method uses those that apply
 // to it and refuses values that make no sense for it, naming the option.
@@ -46,6 +52,9 @@ struct FitSettings {
   // held-out samples, so the physical fit skips its covariance and its check for leaving
   // physics.
   bool fold = false;
+  // A fold's: the model fitted to all samples, whose folds these are (a builder may take
+  // from it what its fold cannot choose, such as the smooth model's space).
+  const AlloyModel* parent = nullptr;
   const AlloyModel* start = nullptr;  // refit: start from this model (same method)
   int max_iterations = 0;  // physical: the solver's iterations, 0 for the fit's default
   std::shared_ptr<FitMemo> memo;  // null: BuildModel makes one for this fit alone
@@ -53,11 +62,6 @@ struct FitSettings {
   // auto (required there): the colorimeter its leave-one-out scores colour with, at normal
   // incidence; data without colour (infrared) are scored by reflectance.
   const color::Colorimeter* colorimeter = nullptr;
-};
-
-struct MethodBuilder {
-  std::string name;  // as in Methods()
-  std::unique_ptr<AlloyModel> (*build)(const Dataset& dataset, const FitSettings& settings);
 };
 
 // "auto", the default of `alloycolor fit`: every other method is built on all samples with
@@ -86,8 +90,9 @@ std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings&
 // puts 95 % inside two. 1 for no folds; clamped to 1e-3..1e3.
 double SigmaCalibration(const std::vector<double>& log_ratios);
 
-// One builder per entry of Methods(), in the same order.
-const std::vector<MethodBuilder>& Builders();
+// Attaches the built-in methods' builders to their registry entries (once; BuildModel does
+// it before building).
+void AttachBuiltInBuilders();
 
 // Builds `method` on the data set and, with settings.calibrate and three compositions or
 // more, estimates its prediction error: each interior composition (20 at most, spread by

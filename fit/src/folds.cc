@@ -1,0 +1,123 @@
+#include "folds.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "alloycolor/color/sample_error.h"
+#include "alloycolor/core/error.h"
+#include "alloycolor/core/parallel.h"
+
+namespace alloycolor::fit {
+
+std::vector<double> ErrorFolds(const Dataset& dataset) {
+  const std::vector<double> xs = DistinctCompositions(dataset);
+  if (xs.size() < 3) return {};
+  std::vector<double> interior(xs.begin() + 1, xs.end() - 1);
+  constexpr size_t kMaxFolds = 20;
+  if (interior.size() <= kMaxFolds) return interior;
+  std::vector<double> folds;
+  for (size_t f = 0; f < kMaxFolds; ++f) {
+    folds.push_back(interior[f * (interior.size() - 1) / (kMaxFolds - 1)]);
+  }
+  return folds;
+}
+
+std::vector<Fold> FitFolds(const MethodInfo& method, const Dataset& dataset,
+                           const FitSettings& settings, const AlloyModel& model) {
+  const std::vector<double> xs = ErrorFolds(dataset);
+  FitSettings inner = settings;
+  inner.calibrate = false;
+  inner.fold = true;
+  inner.progress = {};
+  inner.parent = &model;
+  inner.start = method.traits.warm_start_folds ? &model : nullptr;
+  std::vector<Fold> folds(xs.size());
+  ParallelTasks(xs.size(), [&](size_t k) {
+    Fold& f = folds[k];
+    f.x = xs[k];
+    const Dataset training = WithoutSamples(dataset, {f.x});
+    try {
+      f.model = BuildWithFolds(method, training, inner, nullptr);
+    } catch (const Error& e) {
+      f.error = e.what();
+      return;
+    }
+    for (const Sample& s : dataset.samples) {
+      if (s.x_atomic == f.x) f.held.push_back(&s);
+    }
+    f.compositions = DistinctCompositions(training);
+  });
+  return folds;
+}
+
+MethodScore ScoreFolds(const std::string& method, std::vector<Fold>& folds,
+                       const color::Colorimeter& colorimeter, std::string* metric,
+                       std::vector<double>* values) {
+  MethodScore score;
+  score.method = method;
+  *metric = "reflectance_rms at normal incidence";  // data without colour
+  double sum = 0;
+  int failed = 0;
+  for (const Fold& f : folds) {
+    if (!f.model) {
+      ++failed;
+      continue;
+    }
+    bool fold_failed = false;
+    for (const Sample* s : f.held) {
+      double v = 0;
+      try {
+        const color::SampleError e = color::ErrorAgainstSample(colorimeter, *f.model, *s);
+        if (e.has_colour()) *metric = "delta_e00 at normal incidence";
+        v = e.score();
+      } catch (const Error&) {
+        fold_failed = true;
+        continue;
+      }
+      if (!std::isfinite(v)) {
+        fold_failed = true;
+        continue;
+      }
+      sum += v;
+      values->push_back(v);
+      score.max = score.folds == 0 ? v : std::max(score.max, v);
+      ++score.folds;
+    }
+    failed += fold_failed;
+  }
+  if (failed > 0) {
+    score.error = "failed on " + std::to_string(failed) + " of " + std::to_string(folds.size()) +
+                  " folds";
+  } else {
+    score.mean = score.folds > 0 ? sum / score.folds : 0;
+  }
+  return score;
+}
+
+std::unique_ptr<AlloyModel> Build(const MethodInfo& method, const Dataset& dataset,
+                                  const FitSettings& settings) {
+  AttachBuiltInBuilders();
+  const MethodInfo& entry = RequireMethod(method.name);  // the builder as attached now
+  if (entry.build == nullptr) throw Error("method '" + entry.name + "' cannot be fitted to data");
+  return entry.build(dataset, settings);
+}
+
+void AddFolds(const MethodInfo& method, const Dataset& dataset, const FitSettings& settings,
+              AlloyModel* model, std::vector<Fold>* folds) {
+  *folds = FitFolds(method, dataset, settings, *model);
+  if (settings.calibrate) EstimatePredictionError(method, *folds, dataset, settings, model);
+}
+
+std::unique_ptr<AlloyModel> BuildWithFolds(const MethodInfo& method, const Dataset& dataset,
+                                           const FitSettings& settings,
+                                           std::vector<Fold>* folds) {
+  std::unique_ptr<AlloyModel> model = Build(method, dataset, settings);
+  if (!settings.fold) RecordInSampleError(dataset, settings, model.get());
+  std::vector<Fold> own;
+  if (folds != nullptr || settings.calibrate) {
+    AddFolds(method, dataset, settings, model.get(), folds != nullptr ? folds : &own);
+  }
+  return model;
+}
+
+}  // namespace alloycolor::fit

@@ -1,0 +1,110 @@
+// Inside the fit library: the leave-one-composition-out folds every fitted model carries
+// (its prediction error comes from them, `auto` scores methods by them), and the memo that
+// the fits of one job share.
+#ifndef ALLOYCOLOR_FIT_SRC_FOLDS_H_
+#define ALLOYCOLOR_FIT_SRC_FOLDS_H_
+
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "alloycolor/color/colorimetry.h"
+#include "alloycolor/core/dataset.h"
+#include "alloycolor/fit/methods.h"
+#include "alloycolor/fit/physical_fit.h"
+#include "alloycolor/model/alloy_model.h"
+#include "alloycolor/model/registry.h"
+
+namespace alloycolor::fit {
+
+// A candidate built on all samples with its folds, scored on them (selection.cc).
+struct Scored {
+  std::unique_ptr<AlloyModel> model;  // null where it could not be built or scored
+  MethodScore score;
+  // Each held-out sample's score, in the folds' order, then (for `auto`) the in-sample
+  // error of each end composition's samples, which no fold can hold out.
+  std::vector<double> values;
+  std::string metric;
+};
+
+struct FitMemo {
+  struct Remembered {
+    nlohmann::json model;
+    MethodScore score;
+    std::vector<double> values;
+    std::string metric;
+  };
+  std::mutex mutex;
+  std::map<std::string, Remembered> degree_choices;
+  std::shared_ptr<EndSampleFits> end_fits = MakeEndSampleFits();
+};
+
+inline EndSampleFits* FitMemoEndFits(FitMemo& memo) { return memo.end_fits.get(); }
+
+// The compositions held out to estimate the prediction error: the interior ones, 20 at
+// most, spread by rank.
+std::vector<double> ErrorFolds(const Dataset& dataset);
+
+// One composition held out: the method built on the rest (null where it could not be),
+// the held-out samples, and what the prediction error needs of the fold.
+struct Fold {
+  double x = 0;
+  std::unique_ptr<AlloyModel> model;
+  std::string error;                 // why model is null
+  std::vector<const Sample*> held;
+  std::vector<double> compositions;  // of the fold's training samples
+};
+
+// The method built without each of ErrorFolds in turn, in parallel; `model` is the one
+// built on all samples (the folds' parent: a method with warm-started folds starts there).
+std::vector<Fold> FitFolds(const MethodInfo& method, const Dataset& dataset,
+                           const FitSettings& settings, const AlloyModel& model);
+
+// The folds' held-out samples scored as `validate` scores them (color/sample_error.h):
+// CIEDE2000 at normal incidence, or the reflectance RMS for data without colour; the mean
+// over them. `values`: each held-out sample's score, in the folds' order; `metric` which.
+MethodScore ScoreFolds(const std::string& method, std::vector<Fold>& folds,
+                       const color::Colorimeter& colorimeter, std::string* metric,
+                       std::vector<double>* values);
+
+// `method` built on the data set, nothing more (its registry builder).
+std::unique_ptr<AlloyModel> Build(const MethodInfo& method, const Dataset& dataset,
+                                  const FitSettings& settings);
+
+// The model's folds and, with settings.calibrate, its prediction error from them and its
+// in-sample misfit (prediction_error.h).
+void AddFolds(const MethodInfo& method, const Dataset& dataset, const FitSettings& settings,
+              AlloyModel* model, std::vector<Fold>* folds);
+
+// `method` built on the data set; with `folds` (or settings.calibrate) the leave-one-out
+// folds too, and with settings.calibrate its prediction error from them.
+std::unique_ptr<AlloyModel> BuildWithFolds(const MethodInfo& method, const Dataset& dataset,
+                                           const FitSettings& settings,
+                                           std::vector<Fold>* folds);
+
+// The model's prediction error (alloy_model.h PredictionError) from its folds, its
+// in-sample misfit and the data's precision (prediction_error.cc); sets each fold model's
+// error too.
+void EstimatePredictionError(const MethodInfo& method, std::vector<Fold>& folds,
+                             const Dataset& dataset, const FitSettings& settings,
+                             AlloyModel* model);
+
+// The model against each of its own training samples (color/sample_error.h), kept in the
+// model (AlloyModel::in_sample) with a warning for each sample it misses by more than
+// kInSampleMissDe00 (or kInSampleMissReflectance for data without colour).
+void RecordInSampleError(const Dataset& dataset, const FitSettings& settings, AlloyModel* model);
+inline constexpr double kInSampleMissDe00 = 1.0;
+inline constexpr double kInSampleMissReflectance = 0.01;
+
+// `auto` and the physical degree choice (selection.cc).
+bool ChoosesDegree(const MethodInfo& method, const FitSettings& settings);
+Scored RememberedDegreeChoice(const MethodInfo& method, const Dataset& dataset,
+                              const FitSettings& settings);
+
+}  // namespace alloycolor::fit
+
+#endif  // ALLOYCOLOR_FIT_SRC_FOLDS_H_

@@ -1,0 +1,347 @@
+// The error bars of a fitted model (model/alloy_model.h PredictionError): the scale of its
+// interpolation error from the leave-one-composition-out folds, calibrated on their colour
+// errors; what it misses at its own training compositions; the scatter of replicate
+// samples; and the resolution of the data.
+#include <algorithm>
+#include <boost/math/distributions/students_t.hpp>
+#include <cmath>
+#include <complex>
+#include <cstdio>
+
+#include "alloycolor/color/material_color.h"
+#include "alloycolor/color/sample_error.h"
+#include "alloycolor/core/error.h"
+#include "alloycolor/core/grid.h"
+#include "alloycolor/core/spectrum.h"
+#include "alloycolor/core/text.h"
+#include "folds.h"
+
+namespace alloycolor::fit {
+namespace {
+
+// The power of the gap in B: the method's (MethodTraits::gap_exponent), and 2 for every
+// method on three compositions, whose one fold is the straight line between the ends.
+double GapExponent(const MethodInfo& method, const Dataset& dataset) {
+  return DistinctCompositions(dataset).size() == 3 ? 2.0 : method.traits.gap_exponent;
+}
+
+// The finest decimal step the printed values need (1e-3 for "1.140", "2.5"): what a file's
+// digits can resolve.
+double DecimalStep(const std::vector<double>& values) {
+  int decimals = 0;
+  for (double v : values) {
+    int d = 0;
+    double scaled = std::abs(v);
+    while (d < 12 && std::abs(scaled - std::round(scaled)) > 1e-6 * std::max(1.0, scaled)) {
+      scaled *= 10;
+      ++d;
+    }
+    decimals = std::max(decimals, d);
+  }
+  return std::pow(10.0, -decimals);
+}
+
+// The relative eps error of one measurement that the data's digits can resolve: n and k
+// each off by up to half a step (a uniform error, standard deviation step / sqrt(12)), so
+// |d eps| / |eps| = 2 sqrt(sd_n^2 + sd_k^2) / |n + i k|; the median over the samples'
+// wavelengths inside [lo, hi].
+double DigitsPrecision(const Dataset& dataset, double lo, double hi) {
+  std::vector<double> relative;
+  for (const Sample& s : dataset.samples) {
+    const double sd_n = DecimalStep(s.nk.n) / std::sqrt(12.0);
+    const double sd_k = DecimalStep(s.nk.k) / std::sqrt(12.0);
+    for (size_t j = 0; j < s.nk.lambda_nm.size(); ++j) {
+      if (s.nk.lambda_nm[j] < lo || s.nk.lambda_nm[j] > hi) continue;
+      const double size = std::hypot(s.nk.n[j], s.nk.k[j]);
+      if (size > 0) relative.push_back(2 * std::hypot(sd_n, sd_k) / size);
+    }
+  }
+  if (relative.empty()) return 0;
+  std::nth_element(relative.begin(), relative.begin() + relative.size() / 2, relative.end());
+  return std::min(relative[relative.size() / 2], 1.0);
+}
+
+// The wavelengths of the misfit spectra: 5 nm over the colorimeters' 360-830 nm where the
+// model covers it, and 60 more spread evenly in log wavelength over the model's range.
+std::vector<double> MisfitGrid(double lo, double hi) {
+  std::vector<double> grid;
+  for (double l = 360; l <= 830 + 1e-9; l += 5) {
+    if (l >= lo && l <= hi) grid.push_back(l);
+  }
+  for (int i = 0; i <= 60; ++i) grid.push_back(lo * std::pow(hi / lo, i / 60.0));
+  grid.front() = std::max(grid.front(), lo);
+  std::sort(grid.begin(), grid.end());
+  std::vector<double> out;
+  for (double l : grid) {
+    l = std::clamp(l, lo, hi);
+    if (out.empty() || l > out.back() * (1 + 1e-9)) out.push_back(l);
+  }
+  return out;
+}
+
+std::complex<double> Bounded(std::complex<double> v) {
+  if (!std::isfinite(v.real()) || !std::isfinite(v.imag())) return 0.0;
+  return {std::clamp(v.real(), -100.0, 100.0), std::clamp(v.imag(), -100.0, 100.0)};
+}
+
+// The model's misfit at each training composition and the replicates' scatter (see
+// PredictionError), on `grid`.
+void AddMisfit(const Dataset& dataset, const AlloyModel& model, const std::vector<double>& grid,
+               PredictionError* error) {
+  const std::vector<double> xs = DistinctCompositions(dataset);
+  std::vector<std::vector<std::complex<double>>> misfit;
+  double largest = 0;
+  for (double x : xs) {
+    const std::vector<std::complex<double>> predicted = model.Permittivity(x, grid);
+    std::vector<const Sample*> here;
+    for (const Sample& s : dataset.samples) {
+      if (s.x_atomic == x) here.push_back(&s);
+    }
+    std::vector<std::complex<double>> mean(grid.size(), 0.0);
+    std::vector<std::vector<std::complex<double>>> eps(here.size());
+    for (size_t r = 0; r < here.size(); ++r) {
+      for (size_t j = 0; j < grid.size(); ++j) {
+        const NkSpectrum& nk = here[r]->nk;
+        const bool covered = grid[j] >= nk.lambda_min_nm() && grid[j] <= nk.lambda_max_nm();
+        const std::complex<double> index = covered ? NkAt(nk, grid[j]) : 0.0;
+        eps[r].push_back(covered ? index * index : predicted[j]);
+        mean[j] += eps[r][j] / static_cast<double>(here.size());
+      }
+    }
+    std::vector<std::complex<double>> relative(grid.size());
+    for (size_t j = 0; j < grid.size(); ++j) {
+      relative[j] = Bounded((mean[j] - predicted[j]) / std::abs(predicted[j]));
+      largest = std::max(largest, std::abs(relative[j]));
+    }
+    misfit.push_back(std::move(relative));
+    if (here.size() < 2) continue;
+    const double n = static_cast<double>(here.size());
+    for (size_t r = 0; r < here.size(); ++r) {
+      std::vector<std::complex<double>> deviation(grid.size());
+      for (size_t j = 0; j < grid.size(); ++j) {
+        deviation[j] = Bounded((eps[r][j] - mean[j]) / std::abs(mean[j]) * std::sqrt(n / (n - 1)));
+      }
+      error->scatter.push_back(std::move(deviation));
+    }
+  }
+  // An interpolating method passes through its samples: no misfit to carry.
+  if (largest > 1e-9) error->misfit = std::move(misfit);
+  if (!error->misfit.empty() || !error->scatter.empty()) error->misfit_lambda_nm = grid;
+}
+
+// The interpolation error's scale from the folds (nothing where no fold could be used),
+// calibrated on their colour errors; sets each fold model's error too.
+PredictionError FoldPredictionError(const MethodInfo& method, std::vector<Fold>& fitted,
+                                    const Dataset& dataset, const FitSettings& settings,
+                                    const AlloyModel& model) {
+  const double lo = model.lambda_min_nm(), hi = model.lambda_max_nm();
+  std::vector<double> grid;
+  for (int j = 0; j <= 80; ++j) grid.push_back(lo + (hi - lo) * j / 80.0);
+  std::vector<Fold*> done;  // a fold the method cannot fit says nothing about the error
+  double gap_sum = 0;
+  for (Fold& f : fitted) {
+    if (!f.model) continue;
+    const size_t i = std::upper_bound(f.compositions.begin(), f.compositions.end(), f.x) -
+                     f.compositions.begin();
+    gap_sum += f.compositions[i] - f.compositions[i - 1];
+    done.push_back(&f);
+  }
+  if (done.empty()) return {};
+  const double reference_gap = gap_sum / done.size();
+  const double gap_exponent = GapExponent(method, dataset);
+  // Each fold's relative eps errors per wavelength, over its B (reference gap, end factor 1).
+  struct FoldErrors {
+    Fold* fold = nullptr;
+    std::vector<double> over_bump;  // per held-out sample and wavelength, flattened
+    bool end = false;               // held out in an end interval of its training samples
+    std::vector<double> sum_sq;     // per wavelength: its part of sum_sq below
+    int count = 0;                  // its held-out samples
+  };
+  std::vector<FoldErrors> errors;
+  for (Fold* fp : done) {
+    const Fold& f = *fp;
+    PredictionError shape;
+    shape.compositions = f.compositions;
+    shape.reference_gap = reference_gap;
+    shape.gap_exponent = gap_exponent;
+    const double bump = shape.Bump(f.x);
+    if (!(bump > 0)) continue;
+    FoldErrors fe;
+    fe.fold = fp;
+    const size_t n = f.compositions.size();
+    const size_t hi = std::upper_bound(f.compositions.begin(), f.compositions.end(), f.x) -
+                      f.compositions.begin();
+    fe.end = n > 2 && (hi == 1 || hi == n - 1);
+    const auto predicted = f.model->Permittivity(f.held.front()->x_atomic, grid);
+    for (const Sample* s : f.held) {
+      for (size_t j = 0; j < grid.size(); ++j) {
+        const std::complex<double> nk = NkAt(s->nk, grid[j]), e = nk * nk;
+        const double r = std::abs(predicted[j] - e) / std::abs(e);
+        fe.over_bump.push_back(std::isfinite(r) ? r / bump : 0.0);
+      }
+    }
+    errors.push_back(std::move(fe));
+  }
+  if (errors.empty()) return {};
+  // The end factor: how much larger the end folds' errors are than the interior ones'
+  // (geometric means of their RMS), where the folds have both; at least 1.
+  double end_factor = 1;
+  {
+    double log_sum[2] = {0, 0};
+    int folds_of[2] = {0, 0};
+    for (const FoldErrors& fe : errors) {
+      double sq = 0;
+      for (double v : fe.over_bump) sq += v * v;
+      const double rms = std::sqrt(sq / std::max<size_t>(fe.over_bump.size(), 1));
+      if (!(rms > 0)) continue;
+      log_sum[fe.end] += std::log(rms);
+      ++folds_of[fe.end];
+    }
+    if (folds_of[0] > 0 && folds_of[1] > 0) {
+      // Shrunk towards 1 as few folds say little: weight k / (k + 2), k the smaller group.
+      const double k = std::min(folds_of[0], folds_of[1]);
+      end_factor = std::clamp(
+          std::exp(k / (k + 2) * (log_sum[1] / folds_of[1] - log_sum[0] / folds_of[0])), 1.0,
+          10.0);
+    }
+  }
+  // scale[j]^2: mean over the held-out samples of (relative error / B)^2.
+  std::vector<double> sum_sq(grid.size(), 0.0);
+  int count = 0;
+  for (FoldErrors& fe : errors) {
+    const double factor = fe.end ? end_factor : 1.0;
+    fe.sum_sq.assign(grid.size(), 0.0);
+    for (size_t k = 0; k < fe.over_bump.size(); ++k) {
+      fe.sum_sq[k % grid.size()] += std::pow(fe.over_bump[k] / factor, 2);
+    }
+    fe.count = static_cast<int>(fe.over_bump.size() / grid.size());
+    for (size_t j = 0; j < grid.size(); ++j) sum_sq[j] += fe.sum_sq[j];
+    count += fe.count;
+  }
+  if (count == 0) return {};
+  PredictionError error;
+  error.end_factor = end_factor;
+  error.lambda_nm = grid;
+  for (double v : sum_sq) error.scale.push_back(std::min(std::sqrt(v / count), 100.0));
+  error.compositions = DistinctCompositions(dataset);
+  error.reference_gap = reference_gap;
+  error.gap_exponent = gap_exponent;
+  error.folds = static_cast<int>(done.size());
+  // Calibration on colour: the folds' observed / predicted one-sigma CIEDE2000, each
+  // fold's sigma from the scale of the other folds (cross-fitted: a fold's own error in
+  // its scale would flatter the ratio, by half with two folds).
+  if (settings.colorimeter != nullptr && CoversVisible(lo, hi)) {
+    const color::Colorimeter& cm = *settings.colorimeter;
+    std::vector<double> log_ratios;
+    for (const FoldErrors& fe : errors) {
+      Fold& f = *fe.fold;
+      PredictionError fold_error = error;
+      fold_error.compositions = f.compositions;
+      if (errors.size() > 1) {
+        for (size_t j = 0; j < grid.size(); ++j) {
+          fold_error.scale[j] =
+              std::min(std::sqrt((sum_sq[j] - fe.sum_sq[j]) / (count - fe.count)), 100.0);
+        }
+      }
+      f.model->set_prediction_error(fold_error);
+      const double x = f.held.front()->x_atomic;
+      const double sigma = color::DeltaE00Sigma(cm, *f.model, x, 0.0);
+      if (!(sigma > 0) || !std::isfinite(sigma)) continue;
+      const color::Lab predicted = color::LabFromXYZ(
+          color::MaterialXYZ(cm, color::IndexOnGrid(cm, *f.model, x), 0.0), cm.White());
+      for (const Sample* s : f.held) {
+        const color::Lab truth = color::LabFromXYZ(
+            color::MaterialXYZ(cm, color::IndexOnGrid(cm, s->nk), 0.0), cm.White());
+        const double ratio = color::DeltaE00(truth, predicted) / sigma;
+        if (ratio > 0 && std::isfinite(ratio)) log_ratios.push_back(std::log(ratio));
+      }
+    }
+    if (!log_ratios.empty()) error.calibration = SigmaCalibration(log_ratios);
+  }
+  return error;
+}
+
+}  // namespace
+
+void RecordInSampleError(const Dataset& dataset, const FitSettings& settings, AlloyModel* model) {
+  std::vector<InSampleError> rows;
+  for (const Sample& s : dataset.samples) {
+    InSampleError row;
+    row.x_atomic = s.x_atomic;
+    row.file = s.file;
+    row.delta_e00 = std::nan("");
+    try {
+      if (settings.colorimeter != nullptr) {
+        const color::SampleError e = color::ErrorAgainstSample(*settings.colorimeter, *model, s);
+        row.delta_e00 = e.delta_e00;
+        row.reflectance_rms = e.reflectance_rms;
+      } else {
+        row.reflectance_rms = std::nan("");
+      }
+    } catch (const Error& e) {
+      model->AddWarning(model->method() + " cannot be compared with its own sample " + s.file +
+                        ": " + e.what());
+      continue;
+    }
+    if (!std::isfinite(row.reflectance_rms)) continue;
+    const bool colour = std::isfinite(row.delta_e00);
+    if (colour ? row.delta_e00 > kInSampleMissDe00
+               : row.reflectance_rms > kInSampleMissReflectance) {
+      char what[200];
+      if (colour) {
+        std::snprintf(what, sizeof what, "by CIEDE2000 %.3g (reflectance RMS %.3g)",
+                      row.delta_e00, row.reflectance_rms);
+      } else {
+        std::snprintf(what, sizeof what, "by reflectance RMS %.3g", row.reflectance_rms);
+      }
+      model->AddWarning(model->method() + " misses its own sample " + s.file + " (x = " +
+                        FormatNumber(s.x_atomic) + ") " + what +
+                        "; its one-sigma there covers the miss");
+    }
+    rows.push_back(std::move(row));
+  }
+  model->set_in_sample(std::move(rows));
+}
+
+double SigmaCalibration(const std::vector<double>& log_ratios) {
+  if (log_ratios.empty()) return 1;
+  constexpr double kPriorLogSpread = 0.6, kPriorFolds = 2;
+  const double f = static_cast<double>(log_ratios.size());
+  double mu = 0, sq = 0;
+  for (double v : log_ratios) mu += v;
+  mu /= f;
+  for (double v : log_ratios) sq += (v - mu) * (v - mu);
+  const double s2 = (kPriorFolds * kPriorLogSpread * kPriorLogSpread + sq) / (kPriorFolds + f - 1);
+  const double spread = std::sqrt(s2 * (1 + 1 / f));
+  // A new log ratio's predictive law: Student's t with the pooled variance's degrees of
+  // freedom (normal-inverse-chi-squared prior), its quantiles wider than the normal's
+  // while the folds are few.
+  const boost::math::students_t law(kPriorFolds + f - 1);
+  const double q68 = boost::math::quantile(law, 0.68), q95 = boost::math::quantile(law, 0.95);
+  const double c68 = std::exp(mu + q68 * spread), c95 = std::exp(mu + q95 * spread) / 2;
+  // Both aims hold where the ratio's 95 % quantile is at most twice its 68 % one (c95 <= c68,
+  // as for a half-normal error). Where it is more they cannot: the factor for 95 % inside
+  // two sigma would put far more than 68 % inside one (84 % in the bundled sets' pooled
+  // leave-one-out folds). There the factor splits the difference: the geometric mean.
+  return std::clamp(std::max(c68, std::sqrt(c68 * c95)), 1e-3, 1e3);
+}
+
+void EstimatePredictionError(const MethodInfo& method, std::vector<Fold>& fitted,
+                             const Dataset& dataset, const FitSettings& settings,
+                             AlloyModel* model) {
+  PredictionError error = FoldPredictionError(method, fitted, dataset, settings, *model);
+  const double lo = model->lambda_min_nm(), hi = model->lambda_max_nm();
+  AddMisfit(dataset, *model, MisfitGrid(lo, hi), &error);
+  if (!error.present() && error.misfit.empty() && error.scatter.empty()) return;
+  error.precision = DigitsPrecision(dataset, lo, hi);
+  if (!error.present()) {
+    // No folds (two compositions): the misfit and scatter alone.
+    error.lambda_nm = error.misfit_lambda_nm;
+    error.scale.assign(error.lambda_nm.size(), 0.0);
+    error.compositions = DistinctCompositions(dataset);
+    if (error.compositions.size() < 2) return;
+  }
+  model->set_prediction_error(std::move(error));
+}
+
+}  // namespace alloycolor::fit

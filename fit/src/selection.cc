@@ -1,0 +1,450 @@
+// `auto` (BuildAuto) and the physical model's composition degree: candidates built with
+// their folds, scored on them, and the simplest within the folds' own scatter of the best
+// chosen.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <mutex>
+
+#include "alloycolor/color/sample_error.h"
+#include "alloycolor/core/error.h"
+#include "alloycolor/core/progress.h"
+#include "folds.h"
+
+namespace alloycolor::fit {
+namespace {
+
+constexpr double kAutoTolerance = 1.10;
+constexpr int kCandidateIterations = 100;  // a physical degree candidate's solver budget
+// Nordheim's rule bows the damping quadratically in composition (the plasma frequency is
+// nearly linear): the degree kept unless leave-one-out finds another clearly better.
+constexpr int kPreferredDegree = 2;
+
+
+// `model` (`method` built on the data set) with its folds, scored on them.
+Scored ScoreWithFolds(const MethodInfo& method, const Dataset& dataset,
+                      const FitSettings& settings, std::unique_ptr<AlloyModel> model) {
+  Scored r;
+  r.score.method = method.name;
+  try {
+    std::vector<Fold> folds;
+    AddFolds(method, dataset, settings, model.get(), &folds);
+    r.model = std::move(model);
+    r.score = ScoreFolds(method.name, folds, *settings.colorimeter, &r.metric, &r.values);
+  } catch (const Error& e) {
+    r.score.error = e.what();
+  }
+  if (!r.score.error.empty()) r.model.reset();
+  return r;
+}
+
+Scored BuildScored(const MethodInfo& method, const Dataset& dataset,
+                   const FitSettings& settings) {
+  std::unique_ptr<AlloyModel> model;
+  try {
+    model = Build(method, dataset, settings);
+    RecordInSampleError(dataset, settings, model.get());
+  } catch (const Error& e) {
+    Scored r;
+    r.score.method = method.name;
+    r.score.error = e.what();
+    return r;
+  }
+  return ScoreWithFolds(method, dataset, settings, std::move(model));
+}
+
+double Rms(const std::vector<double>& values) {
+  double sum = 0;
+  for (double v : values) sum += v * v;
+  return std::sqrt(sum / std::max<size_t>(values.size(), 1));
+}
+
+// The one-standard-error choice among candidates listed in order of preference (auto:
+// simplest first; the physical degree: Nordheim's first): the first whose
+// mean lies within kAutoTolerance of the lowest, or above it by no more than the standard
+// error of their fold-by-fold differences (paired folds, from two folds up):
+// leave-one-out with few samples flatters the flexible candidates, and a lead within the
+// folds' own scatter is no lead. `squared`: the same on the folds' squared scores (the
+// tolerance on their RMS), so that one bad fold counts as it does in a squared loss.
+// `chosen` and `best` are candidates.size() when none could be scored.
+struct Choice {
+  size_t chosen, best;
+  std::string rule;  // why the chosen, if it is not the best: "10 %" or the standard error
+};
+
+Choice ChooseSimplest(const std::vector<Scored>& candidates, bool squared = false) {
+  const size_t none = candidates.size();
+  Choice c{none, none, ""};
+  std::vector<std::vector<double>> loss(candidates.size());
+  std::vector<double> mean(candidates.size(), 0.0);
+  for (size_t i = 0; i < candidates.size(); ++i) {
+    if (!candidates[i].score.error.empty()) continue;
+    for (double v : candidates[i].values) loss[i].push_back(squared ? v * v : v);
+    for (double v : loss[i]) mean[i] += v / loss[i].size();
+    if (!loss[i].empty() && (c.best == none || mean[i] < mean[c.best])) c.best = i;
+  }
+  if (c.best == none) return c;
+  const auto within_scatter = [&](size_t i) {
+    const std::vector<double>& a = loss[i];
+    const std::vector<double>& b = loss[c.best];
+    if (a.size() != b.size() || a.size() < 2) return false;
+    double d = 0, sq = 0;
+    for (size_t k = 0; k < a.size(); ++k) d += a[k] - b[k];
+    d /= a.size();
+    for (size_t k = 0; k < a.size(); ++k) sq += std::pow(a[k] - b[k] - d, 2);
+    const double se = std::sqrt(sq / (a.size() - 1) / a.size());
+    return d <= se;
+  };
+  const double tolerance = squared ? kAutoTolerance * kAutoTolerance : kAutoTolerance;
+  for (size_t i = 0; i < candidates.size(); ++i) {
+    if (loss[i].empty()) continue;
+    const bool close = mean[i] <= mean[c.best] * tolerance;
+    if (close || within_scatter(i)) {
+      c.chosen = i;
+      if (i != c.best) c.rule = close ? "10 %" : "one standard error of the folds' differences";
+      return c;
+    }
+  }
+  return c;
+}
+
+// RMS of a model's error on the samples it was fitted to, over those its folds hold out
+// (ErrorFolds), in the metric ScoreFolds uses: CIEDE2000 at normal incidence, or for data
+// without colour the reflectance RMS over the sample's wavelengths inside the model's range.
+double OwnErrorRms(const AlloyModel& model, const Dataset& dataset,
+                   const color::Colorimeter& cm) {
+  const std::vector<double> held = ErrorFolds(dataset);
+  double sum = 0;
+  int count = 0;
+  for (const Sample& s : dataset.samples) {
+    if (std::find(held.begin(), held.end(), s.x_atomic) == held.end()) continue;
+    const double e = color::ErrorAgainstSample(cm, model, s).score();
+    if (!std::isfinite(e)) continue;
+    sum += e * e;
+    ++count;
+  }
+  return std::sqrt(sum / std::max(count, 1));
+}
+
+// A physical candidate scored on its folds unless its own error on the samples (converged:
+// an unfinished fit is continued first) already exceeds what it would have to beat,
+// `preferred`'s leave-one-out RMS over kAutoTolerance: a held-out sample is no nearer than
+// the fitted ones, so its folds could not make it win (Au-Ag at degree 1: own error 1.0
+// against 4e-5), and they are not fitted.
+Scored BuildUnlessOutdone(const MethodInfo& method, const Dataset& dataset,
+                          const FitSettings& settings, const Scored& preferred) {
+  if (!preferred.score.error.empty()) return BuildScored(method, dataset, settings);
+  const double must_beat = Rms(preferred.values) / kAutoTolerance;
+  Scored r;
+  r.score.method = method.name;
+  std::unique_ptr<AlloyModel> model;
+  double own = 0;
+  try {
+    model = Build(method, dataset, settings);
+    own = OwnErrorRms(*model, dataset, *settings.colorimeter);
+    if (own >= must_beat && !model->fit_summary().converged) {
+      FitSettings full = settings;
+      full.start = model.get();
+      full.max_iterations = 0;
+      model = Build(method, dataset, full);
+      own = OwnErrorRms(*model, dataset, *settings.colorimeter);
+    }
+  } catch (const Error& e) {
+    r.score.error = e.what();
+    return r;
+  }
+  if (own >= must_beat) {
+    char why[160];
+    std::snprintf(why, sizeof why,
+                  "its own RMS error on the samples, %.4g, already exceeds what it would have "
+                  "to beat, %.4g",
+                  own, must_beat);
+    r.score.error = why;
+    return r;
+  }
+  RecordInSampleError(dataset, settings, model.get());
+  return ScoreWithFolds(method, dataset, settings, std::move(model));
+}
+
+// The physical fit's composition degree chosen by the data: degrees 2 and 1 (2 needs four
+// compositions, so that every fold fits it too), each built with its folds and scored on
+// them by the RMS of the folds' errors. Degree 2 (kPreferredDegree) stays unless degree 1
+// is lower by more than 10 % and by more than one standard error of the folds' paired
+// differences (ChooseSimplest with 2 first, squared: a degree that misses one fold badly
+// is not saved by the others): leave-one-out over a few folds is too noisy to overrule
+// the physics on less. Degree 3 is not offered: on Nb-Sn the folds chose it where a
+// held-out end sample left a wide gap, and it bent across that gap (reflectance RMS 0.42
+// against 0.13); --degree asks for it. Fewer than four compositions cannot tell degrees
+// apart: the default degree then. The table and the reason go into the fit summary.
+Scored BuildChoosingDegree(const MethodInfo& method, const Dataset& dataset,
+                           const FitSettings& settings) {
+  const int compositions = static_cast<int>(DistinctCompositions(dataset).size());
+  const int top = std::min(kPreferredDegree, compositions - 2);
+  if (settings.colorimeter == nullptr || ErrorFolds(dataset).size() < 2 || top < 2) {
+    return BuildScored(method, dataset, settings);
+  }
+  // Candidates on a fifth of the iterations and without covariance: a degree that does
+  // not fit the data shows it long before, and the chosen one is finished below.
+  std::vector<Scored> candidates;
+  std::vector<int> degrees;
+  for (int degree : {kPreferredDegree, 1}) {
+    if (degree <= top) degrees.push_back(degree);
+  }
+  for (int degree : degrees) {
+    Report(settings.progress, method.name + ": degree " + std::to_string(degree) +
+                                  ", leave-one-out over " +
+                                  std::to_string(ErrorFolds(dataset).size()) + " compositions");
+    FitSettings at = settings;
+    at.degree = degree;
+    at.progress = {};
+    at.covariance = false;
+    at.max_iterations = kCandidateIterations;
+    Scored r = candidates.empty() ? BuildScored(method, dataset, at)
+                                  : BuildUnlessOutdone(method, dataset, at, candidates.front());
+    if (r.model && r.model->fit_summary().degree != degree) {
+      r.score.error = "lowered to degree " + std::to_string(r.model->fit_summary().degree) +
+                      " (it left physics or did not converge)";
+      r.model.reset();
+    }
+    candidates.push_back(std::move(r));
+  }
+  const Choice c = ChooseSimplest(candidates, /*squared=*/true);
+  if (c.chosen == candidates.size()) {
+    // No degree could be scored: the default fit says why (or succeeds on its own).
+    return BuildScored(method, dataset, settings);
+  }
+  Scored chosen = std::move(candidates[c.chosen]);
+  const int degree = chosen.model->fit_summary().degree;
+  {
+    // Finished from where the candidate stopped, with the covariance; its folds' prediction
+    // error carries over (the folds started from the candidate). The finished fit may still
+    // leave physics where the candidate had not (on Au-Ag with 2 % scatter added, eps2 < 0
+    // at the silver end at degree 1): then the physical model is refused, as any fit that
+    // leaves physics is, and auto goes on without it.
+    FitSettings full = settings;
+    full.degree = degree;
+    full.start = chosen.model.get();
+    std::unique_ptr<AlloyModel> finished;
+    try {
+      finished = Build(method, dataset, full);
+      RecordInSampleError(dataset, settings, finished.get());
+    } catch (const Error& e) {
+      Scored refused;
+      refused.score.method = method.name;
+      refused.score.error = e.what();
+      return refused;
+    }
+    if (chosen.model->prediction_error().present()) {
+      finished->set_prediction_error(chosen.model->prediction_error());
+    }
+    chosen.model = std::move(finished);
+  }
+  char reason[200];
+  std::snprintf(reason, sizeof reason, "leave-one-out RMS %s %.4g over %d folds%s%s",
+                chosen.metric.c_str(), Rms(chosen.values), chosen.score.folds,
+                c.rule.empty() ? ", the lowest" : ", Nordheim's degree 2 within ",
+                c.rule.c_str());
+  FitSummary summary = chosen.model->fit_summary();
+  nlohmann::json table = nlohmann::json::array();
+  for (size_t i = 0; i < candidates.size(); ++i) {
+    const Scored& r = i == c.chosen ? chosen : candidates[i];
+    const MethodScore& s = r.score;
+    nlohmann::json row = {{"degree", degrees[i]}};
+    if (s.error.empty()) {
+      row["rms"] = Rms(r.values);
+      row["mean"] = s.mean;
+      row["max"] = s.max;
+      row["folds"] = s.folds;
+    } else {
+      row["error"] = s.error;
+    }
+    table.push_back(row);
+  }
+  summary.details["degree_chosen_by"] = reason;
+  summary.details["degree_selection"] = table;
+  chosen.model->set_fit_summary(std::move(summary));
+  Report(settings.progress, method.name + ": degree " + std::to_string(degree) + ": " + reason);
+  return chosen;
+}
+
+}  // namespace
+
+// BuildChoosingDegree through settings.memo: the choice is deterministic, so the
+// remembered result (a copy through the model file) is what a new one would give. Keyed by
+// the samples (composition, wavelengths, n, k) and every setting the fit reads; a refit
+// (settings.start) is not remembered.
+Scored RememberedDegreeChoice(const MethodInfo& method, const Dataset& dataset,
+                              const FitSettings& settings) {
+  if (!settings.memo || settings.start != nullptr) {
+    return BuildChoosingDegree(method, dataset, settings);
+  }
+  std::string key = method.name + '\n' + settings.terms;
+  const auto add = [&key](const void* bytes, size_t size) {
+    key.append(static_cast<const char*>(bytes), size);
+  };
+  const double numbers[] = {settings.lambda_from_nm, settings.lambda_to_nm,
+                            settings.lambda_step_nm};
+  add(numbers, sizeof numbers);
+  const int flags[] = {settings.covariance, settings.calibrate, settings.max_iterations};
+  add(flags, sizeof flags);
+  add(&settings.colorimeter, sizeof settings.colorimeter);
+  for (const Sample& s : dataset.samples) {
+    add(&s.x_atomic, sizeof s.x_atomic);
+    for (const auto* v : {&s.nk.lambda_nm, &s.nk.n, &s.nk.k}) {
+      const size_t size = v->size();
+      add(&size, sizeof size);
+      add(v->data(), size * sizeof(double));
+    }
+  }
+  FitMemo& memo = *settings.memo;
+  const auto copy = [&method](const FitMemo::Remembered& m) {
+    Scored r;
+    r.model = method.read(m.model, "the remembered " + method.name + " fit");
+    r.score = m.score;
+    r.values = m.values;
+    r.metric = m.metric;
+    return r;
+  };
+  {
+    const std::lock_guard<std::mutex> lock(memo.mutex);
+    const auto it = memo.degree_choices.find(key);
+    if (it != memo.degree_choices.end()) return copy(it->second);
+  }
+  Scored r = BuildChoosingDegree(method, dataset, settings);
+  if (!r.model) return r;
+  FitMemo::Remembered m{r.model->ToJson(), r.score, r.values, r.metric};
+  const std::lock_guard<std::mutex> lock(memo.mutex);
+  memo.degree_choices.emplace(std::move(key), std::move(m));
+  return r;
+}
+
+bool ChoosesDegree(const MethodInfo& method, const FitSettings& settings) {
+  return method.traits.chooses_degree && settings.degree < 0 && !settings.fold;
+}
+
+
+namespace {
+
+// The in-sample errors of the model at the end compositions, which no fold holds out, in
+// the metric of the folds' scores: a model that contradicts the user's own end samples is
+// scored by that miss as if the samples had been held out (a held-out sample is no nearer).
+std::vector<double> EndSampleScores(const AlloyModel& model, const Dataset& dataset) {
+  const std::vector<double> xs = DistinctCompositions(dataset);
+  std::vector<double> scores;
+  for (const InSampleError& r : model.in_sample()) {
+    if (r.x_atomic != xs.front() && r.x_atomic != xs.back()) continue;
+    scores.push_back(std::isfinite(r.delta_e00) ? r.delta_e00 : r.reflectance_rms);
+  }
+  return scores;
+}
+
+}  // namespace
+
+std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings& settings) {
+  const std::vector<const MethodInfo*> order = AutoCandidates();  // simplest first
+  if (settings.colorimeter == nullptr) throw Error("auto: no colorimeter to score colours with");
+  if (order.empty()) throw Error("auto: no method is a candidate");
+  MethodSelection selection;
+  const size_t held_out = ErrorFolds(dataset).size();
+  if (held_out == 0) {
+    selection.metric = "none";
+    selection.reason = order.front()->name + ": " +
+                       std::to_string(DistinctCompositions(dataset).size()) +
+                       " compositions leave none to hold out (every interpolation is then the "
+                       "straight line between the samples)";
+    Report(settings.progress, "auto: " + selection.reason);
+    std::unique_ptr<AlloyModel> model = BuildModel(order.front()->name, dataset, settings);
+    FitSummary summary = model->fit_summary();
+    summary.selection = selection;
+    model->set_fit_summary(std::move(summary));
+    return model;
+  }
+  // Every candidate built on all samples with its folds (which also give its prediction
+  // error): the folds score it, and the chosen one is already built.
+  FitSettings inner = settings;
+  inner.progress = {};
+  inner.start = nullptr;
+  std::vector<Scored> candidates;
+  const int compositions = static_cast<int>(DistinctCompositions(dataset).size());
+  for (const MethodInfo* method : order) {
+    Report(settings.progress, "auto: scoring " + method->name + " by leave-one-out over " +
+                                  std::to_string(held_out) + " interior compositions");
+    candidates.push_back(ChoosesDegree(*method, inner)
+                             ? RememberedDegreeChoice(*method, dataset, inner)
+                             : BuildScored(*method, dataset, inner));
+    Scored& r = candidates.back();
+    // The folds must score the model delivered: a fold holds compositions - 1, enough
+    // for degree compositions - 2 at most (three compositions: the physical model is
+    // delivered at degree 2 and its folds are degree-1 fits to two samples).
+    if (method->traits.chooses_degree && r.model &&
+        r.model->fit_summary().degree > compositions - 2) {
+      r.score.error = "its folds (" + std::to_string(compositions - 1) +
+                      " compositions each) cannot fit its degree " +
+                      std::to_string(r.model->fit_summary().degree);
+      r.model.reset();
+    }
+    if (r.model) {
+      const std::vector<double> ends = EndSampleScores(*r.model, dataset);
+      r.values.insert(r.values.end(), ends.begin(), ends.end());
+      double sum = 0;
+      for (double v : r.values) sum += v;
+      r.score.mean = sum / std::max<size_t>(r.values.size(), 1);
+      for (double v : ends) r.score.max = std::max(r.score.max, v);
+      r.score.ends = static_cast<int>(ends.size());
+    }
+    selection.scores.push_back(r.score);
+    if (selection.metric.empty()) selection.metric = candidates.back().metric;
+  }
+  Choice c = ChooseSimplest(candidates);
+  // One fold (three compositions): it holds out the middle sample and predicts it from the
+  // ends, where every interpolation is a straight line in its own space, so the fold
+  // compares spaces, not the curves delivered through three samples, and one score has no
+  // scatter to weigh a lead by (on Au-Ag's 0, 0.1, 1 it preferred paper's line, whose curve
+  // then erred 11 on the held-out samples against smooth's 1.3). A method that chooses its
+  // smoothing by other evidence (MethodTraits::chosen_on_one_fold) is taken there.
+  if (held_out == 1) {
+    for (size_t i = 0; i < order.size(); ++i) {
+      if (order[i]->traits.chosen_on_one_fold && candidates[i].score.error.empty() &&
+          c.chosen != i) {
+        c.rule = "one fold";
+        c.chosen = i;
+        break;
+      }
+    }
+  }
+  if (c.chosen == order.size()) {
+    throw Error(dataset.manifest_path + ": auto: no method could be scored");
+  }
+  const MethodScore& chosen_score = selection.scores[c.chosen];
+  const MethodScore& best_score = selection.scores[c.best];
+  const std::string& chosen_name = order[c.chosen]->name;
+  const std::string& best_name = order[c.best]->name;
+  char reason[320];
+  if (c.rule.empty()) {
+    std::snprintf(reason, sizeof reason,
+                  "%s: lowest mean %s, %.4g over %d held-out samples and the ends' own",
+                  chosen_name.c_str(), selection.metric.c_str(), chosen_score.mean,
+                  chosen_score.folds);
+  } else if (c.rule == "one fold") {
+    std::snprintf(reason, sizeof reason,
+                  "%s: one fold (three compositions) compares the straight lines between the "
+                  "ends, not the curves through three samples; %s scored %.4g, %s %.4g",
+                  chosen_name.c_str(), chosen_name.c_str(), chosen_score.mean,
+                  best_name.c_str(), best_score.mean);
+  } else {
+    std::snprintf(reason, sizeof reason,
+                  "%s: mean %s %.4g over %d held-out samples and the ends' own, the simplest "
+                  "within %s of the lowest (%s, %.4g)",
+                  chosen_name.c_str(), selection.metric.c_str(), chosen_score.mean,
+                  chosen_score.folds, c.rule.c_str(), best_name.c_str(), best_score.mean);
+  }
+  selection.reason = reason;
+  std::unique_ptr<AlloyModel> model = std::move(candidates[c.chosen].model);
+  Report(settings.progress, "auto: " + selection.reason);
+  FitSummary summary = model->fit_summary();
+  summary.selection = selection;
+  model->set_fit_summary(std::move(summary));
+  return model;
+}
+
+}  // namespace alloycolor::fit

@@ -58,7 +58,7 @@ void PrintRow(std::string* text, const std::string& label, const color::ColorRes
   Append(text, "%-10s %8.4f %8.4f %8.4f %8.3f %8.3f %8.3f  %-8s %-15s %.3f,%.3f,%.3f",
          label.c_str(), c.xyz.X, c.xyz.Y, c.xyz.Z, c.lab.L, c.lab.a, c.lab.b,
          color::HexColor(c.srgb8).c_str(), rgb8, c.paper_rgb.r, c.paper_rgb.g, c.paper_rgb.b);
-  if (sigma >= 0) Append(text, "  (1-sigma dE00 %.3f)", sigma);
+  if (sigma >= 0) Append(text, "  (1-sigma dE00 %.3g)", sigma);
   *text += "\n";
 }
 

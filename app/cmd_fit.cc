@@ -156,8 +156,8 @@ void Run(const FitOptions& o) {
                    stats.selection.metric.c_str());
       for (const MethodScore& m : stats.selection.scores) {
         if (m.error.empty()) {
-          std::fprintf(stderr, "alloycolor:   %-11s mean %.4g, worst %.4g (%d folds)%s\n",
-                       m.method.c_str(), m.mean, m.max, m.folds,
+          std::fprintf(stderr, "alloycolor:   %-11s mean %.4g, worst %.4g (%d folds, %d ends)%s\n",
+                       m.method.c_str(), m.mean, m.max, m.folds, m.ends,
                        m.method == model->method() ? "  <- chosen" : "");
         } else {
           std::fprintf(stderr, "alloycolor:   %-11s not scored: %s\n", m.method.c_str(),
@@ -167,7 +167,7 @@ void Run(const FitOptions& o) {
       std::fprintf(stderr, "alloycolor: auto chose %s\n", stats.selection.reason.c_str());
     }
     if (stats.present()) {
-      const std::string shape = model->method() == "smooth"
+      const std::string shape = stats.details.contains("space")
                                     ? stats.details.value("space", std::string("eps")) +
                                           ", smoothing " +
                                           FormatNumber(stats.details.value("smoothing", 0.0))
@@ -178,6 +178,20 @@ void Run(const FitOptions& o) {
                    model->method().c_str(), shape.c_str(), stats.final_cost, stats.iterations,
                    stats.converged ? "converged" : "NOT converged", stats.rms_relative_eps,
                    seconds);
+    }
+    if (!model->in_sample().empty()) {
+      std::fprintf(stderr, "alloycolor: %s against its own samples (normal incidence, D65, 2 deg):\n",
+                   model->method().c_str());
+      for (const InSampleError& r : model->in_sample()) {
+        if (std::isfinite(r.delta_e00)) {
+          std::fprintf(stderr, "alloycolor:   x = %-8.4g dE00 %-9.3g reflectance RMS %-9.3g %s\n",
+                       r.x_atomic, r.delta_e00, r.reflectance_rms,
+                       r.file.c_str());
+        } else {
+          std::fprintf(stderr, "alloycolor:   x = %-8.4g reflectance RMS %-9.3g %s\n",
+                       r.x_atomic, r.reflectance_rms, r.file.c_str());
+        }
+      }
     }
     if (old_model) ReportChanges(*old_model, *model);
   }

@@ -23,7 +23,7 @@ struct ValidateOptions {
   std::string data_dir;
   std::string holdout_text;
   bool loo = false;
-  std::string methods = "paper,eps-linear,eps-pchip,eps-spline,smooth";
+  std::string methods;  // empty: the registry's defaults (DefaultValidationMethods)
   std::string angles = "0,45";
   std::string illuminant = "D65";
   int observer = 2;
@@ -83,6 +83,7 @@ std::vector<std::vector<double>> Splits(const ValidateOptions& o, const Dataset&
 std::vector<std::string> ParseMethods(const std::string& text) {
   std::vector<std::string> methods;
   std::vector<std::string> names = SplitList(text);
+  if (text.empty()) names = DefaultValidationMethods();
   if (text == "all") {
     names.clear();
     for (const MethodInfo& m : Methods()) names.push_back(m.name);
@@ -239,8 +240,8 @@ void RegisterValidate(CLI::App& app) {
                 "Leave one out: hold out each interior sample in turn (the default)");
   cmd->add_option("--methods", o->methods,
                   "Methods to compare, comma-separated, or all (every method and auto, which "
-                  "runs its own leave-one-out inside every fold, on the training samples only)")
-      ->capture_default_str();
+                  "runs its own leave-one-out inside every fold, on the training samples only); "
+                  "default: every method but physical");
   cmd->add_option("--angles", o->angles, "Angles of incidence for colour, degrees")
       ->capture_default_str();
   AddColorimetryOptions(cmd, &o->illuminant, &o->observer);

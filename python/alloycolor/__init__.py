@@ -58,7 +58,8 @@ def data_root() -> str:
 
 
 def methods() -> list:
-    """The model methods of the registry: [{"name": ..., "summary": ...}, ...]."""
+    """The model methods of the registry: [{"name", "summary", "auto_rank" (its place in
+    auto's order, -1: not a candidate), "validate_default" (validate runs it by default)}]."""
     return _core.methods()
 
 
@@ -360,8 +361,7 @@ def color(source, x=None, angle_deg=0.0, illuminant="D65", observer=2, sigma=Fal
     return result
 
 
-def validate(dataset: Union[Dataset, str], methods: Union[str, Sequence[str]] = (
-             "paper", "eps-linear", "eps-pchip", "eps-spline", "smooth"),
+def validate(dataset: Union[Dataset, str], methods: Union[None, str, Sequence[str]] = None,
              holdout: Optional[Iterable] = None, angles_deg=(0.0, 45.0),
              illuminant: str = "D65", observer: int = 2, html=None, json=None,
              progress: Optional[Callable[[str], None]] = None) -> dict:
@@ -369,7 +369,8 @@ def validate(dataset: Union[Dataset, str], methods: Union[str, Sequence[str]] = 
     held-out samples (``holdout``: their compositions; default: leave each interior sample
     out in turn) and scored against them (CIEDE2000 per angle, reflectance and n, k errors).
     methods: names of :func:`methods` and "auto" (which runs its own leave-one-out inside
-    every split, on the training samples only), a comma-separated string of them, or "all".
+    every split, on the training samples only), a comma-separated string of them, or "all";
+    default: those the registry marks ``validate_default``, as ``alloycolor validate``.
     Returns the report's JSON document as Python objects; writes the JSON and the
     self-contained HTML page to the paths given as ``json`` and ``html`` (atomically)."""
     if not isinstance(dataset, Dataset):
@@ -389,7 +390,9 @@ def validate(dataset: Union[Dataset, str], methods: Union[str, Sequence[str]] = 
         if not chosen:
             raise Error("holdout: no composition given")
         splits, mode = [chosen], "holdout"
-    if methods == "all":
+    if methods is None:
+        methods = [m["name"] for m in _core.methods() if m["validate_default"]]
+    elif methods == "all":
         methods = [m["name"] for m in _core.methods()] + ["auto"]
     elif isinstance(methods, str):
         methods = [m.strip() for m in methods.split(",")]

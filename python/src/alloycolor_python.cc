@@ -275,6 +275,8 @@ PYBIND11_MODULE(_alloycolor, m) {
       py::dict d;
       d["name"] = info.name;
       d["summary"] = info.summary;
+      d["auto_rank"] = info.traits.auto_rank;
+      d["validate_default"] = info.traits.validate_default;
       out.append(d);
     }
     return out;

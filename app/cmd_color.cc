@@ -139,7 +139,7 @@ void RegisterColor(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "color",
       "Colour of a polished metal: from measured n, k (--nk FILE), or of an alloy at "
-      "composition(s) --x from a data set (--data, paper baseline by default) or a fitted "
+      "composition(s) --x from a data set (--data, the method fit would choose by default) or a fitted "
       "model (--model). Spectral Fresnel reflectance integrated against the illuminant and "
       "observer; outputs XYZ (perfect reflector Y = 1), CIELAB (white = the illuminant's), "
       "linear and 8-bit sRGB (IEC 61966-2-1, no chromatic adaptation) and the paper's RGB.");

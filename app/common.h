@@ -60,7 +60,7 @@ void FlushWarnings();
 struct ModelSource {
   std::string model_path;
   std::string data_dir;
-  std::string method = "paper";
+  std::string method = "auto";
   bool extrapolate = false;
   void AddOptions(CLI::App* cmd, bool with_data);
   // Loads or builds the model; throws Error when neither or both are given.

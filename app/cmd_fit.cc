@@ -156,8 +156,8 @@ void Run(const FitOptions& o) {
                    stats.selection.metric.c_str());
       for (const MethodScore& m : stats.selection.scores) {
         if (m.error.empty()) {
-          std::fprintf(stderr, "alloycolor:   %-11s mean %.4g, worst %.4g (%d folds, %d ends)%s\n",
-                       m.method.c_str(), m.mean, m.max, m.folds, m.ends,
+          std::fprintf(stderr, "alloycolor:   %-11s mean %.4g, worst %.4g (%d folds; ends %.3g)%s\n",
+                       m.method.c_str(), m.mean, m.max, m.folds, m.end_miss,
                        m.method == model->method() ? "  <- chosen" : "");
         } else {
           std::fprintf(stderr, "alloycolor:   %-11s not scored: %s\n", m.method.c_str(),

@@ -414,7 +414,7 @@ nlohmann::json AlloyModel::ToJson() const {
     nlohmann::json scores = nlohmann::json::array();
     for (const MethodScore& m : fit_summary_.selection.scores) {
       nlohmann::json row = {{"method", m.method}, {"folds", m.folds}};
-      if (m.ends > 0) row["ends"] = m.ends;
+      if (m.end_miss > 0) row["end_miss"] = m.end_miss;
       if (m.error.empty()) {
         row["mean"] = m.mean;
         row["max"] = m.max;
@@ -653,8 +653,8 @@ void AlloyModel::ReadCommon(const nlohmann::json& doc) {
         MethodScore m;
         m.method = String(Field(scores[i], "method", where), where + ".method");
         m.folds = static_cast<int>(Number(Field(scores[i], "folds", where), where + ".folds"));
-        if (scores[i].contains("ends")) {
-          m.ends = static_cast<int>(Number(scores[i].at("ends"), where + ".ends"));
+        if (scores[i].contains("end_miss")) {
+          m.end_miss = Number(scores[i].at("end_miss"), where + ".end_miss");
         }
         if (scores[i].contains("error")) {
           m.error = String(scores[i].at("error"), where + ".error");

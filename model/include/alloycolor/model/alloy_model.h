@@ -42,9 +42,9 @@ struct MethodScore {
   double mean = 0;    // mean of the metric over the folds
   double max = 0;     // worst fold
   int folds = 0;
-  // The end compositions' samples scored by the model's own (in-sample) error, which no
-  // fold can hold out; counted in mean and max.
-  int ends = 0;
+  // The model's own (in-sample) error at the end compositions, which no fold can hold
+  // out, in the folds' metric: the larger of the two. Not in mean and max.
+  double end_miss = 0;
   std::string error;  // non-empty: the candidate could not be scored (why)
 };
 struct MethodSelection {

@@ -126,7 +126,8 @@ class Dataset:
     composition = property(lambda self: self._core.composition)
     manifest_path = property(lambda self: self._core.manifest_path)
     warnings = property(lambda self: list(self._core.warnings))
-    x_atomic = property(lambda self: self._core.x_atomic, doc="samples' compositions, sorted")
+    x_atomic = property(lambda self: self._core.x_atomic,
+                        doc="samples' compositions, sorted (repeated for replicates)")
 
     @property
     def samples(self) -> list:
@@ -147,8 +148,8 @@ class Dataset:
             self.manifest_path, x, ", ".join("%g" % v for v in self.x_atomic)))
 
     def without(self, x: Iterable) -> "Dataset":
-        """The data set without the samples at compositions x: each a sample's atomic
-        fraction, the number its manifest gives it, or a string such as "85wt%"."""
+        """The data set without the samples at compositions x (every replicate there): each a
+        sample's atomic fraction, the number its manifest gives it, or a string such as "85wt%"."""
         return Dataset(_core_set=self._core.without([self._match(v) for v in x]))
 
     def select(self, x: Iterable) -> "Dataset":

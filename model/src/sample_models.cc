@@ -314,7 +314,10 @@ SampleModel::SampleModel(Kind kind, const nlohmann::json& doc, const std::string
 
 void SampleModel::Validate() {
   if (nodes_.size() < 2) {
-    throw Error("the " + method() + " model needs at least two samples, at distinct compositions");
+    throw Error("the " + method() + " model needs at least two samples, at distinct compositions" +
+                (nodes_.size() == 1 ? "; all are at x = " + FormatNumber(nodes_[0].x) + " (" +
+                                          nodes_[0].nk.source + ")"
+                                    : std::string()));
   }
   for (size_t i = 1; i < nodes_.size(); ++i) {
     if (!(nodes_[i].x > nodes_[i - 1].x)) {

@@ -24,6 +24,7 @@
 #include "alloycolor/core/dataset.h"
 #include "alloycolor/core/io.h"
 #include "alloycolor/fit/methods.h"
+#include "alloycolor/fit/smooth_fit.h"
 #include "alloycolor/model/alloy_model.h"
 #include "alloycolor/validate/validation.h"
 #include "test_util.h"
@@ -133,6 +134,22 @@ TEST_P(ReplicateFit, PredictsTheMeanWithAnErrorBarThatCoversTheScatter) {
 INSTANTIATE_TEST_SUITE_P(Methods, ReplicateFit,
                          ::testing::Values("paper", "eps-linear", "eps-pchip", "eps-spline",
                                            "smooth", "physical", "auto"));
+
+// With three compositions no fold can cross-validate the smoothing; the marginal
+// likelihood decides, and with the second film it has the films' scatter to weigh (three
+// samples alone leave it nothing: the default, no smoothing).
+TEST(Replicates, SmoothWeighsTheFilmsScatterWhenFewCompositions) {
+  const Dataset all = LoadDataset(ReplicateDir());
+  const Dataset three = WithoutSamples(all, {0.2, 0.8});
+  ASSERT_EQ(three.samples.size(), 4u);
+  const fit::SmoothFitResult with = fit::FitSmooth(three, {});
+  EXPECT_FALSE(with.evidence.empty());
+  EXPECT_EQ(with.smoothing_per_node.size(), with.model->grid_nm().size());
+  Dataset single = three;
+  single.samples.erase(single.samples.begin() + 2);  // the second film
+  ASSERT_EQ(single.samples.size(), 3u);
+  EXPECT_TRUE(fit::FitSmooth(single, {}).evidence.empty());
+}
 
 // Leave-one-out holds out x = 0.2, 0.5 (both films) and 0.8: one row per held-out sample.
 TEST(Replicates, LeaveOneOutHoldsOutACompositionWithAllItsFilms) {

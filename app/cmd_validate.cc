@@ -51,33 +51,14 @@ std::string Format(double x) {
   return buf;
 }
 
-// The held-out compositions of --holdout as atomic fractions of interior samples.
-std::vector<double> ParseHoldouts(const std::string& text, const Dataset& dataset) {
-  std::vector<double> xs;
-  for (const Sample* match : SamplesAt(text, dataset, "--holdout")) {
-    if (match == &dataset.samples.front() || match == &dataset.samples.back()) {
-      throw Error("--holdout: " + Format(match->x_given) + " is an end sample (" + match->file +
-                  "); every method would have to extrapolate to predict it, so it is kept "
-                  "for training: hold out interior samples only");
-    }
-    xs.push_back(match->x_atomic);
-  }
-  return xs;
-}
-
-std::vector<std::vector<double>> Splits(const ValidateOptions& o, const Dataset& dataset) {
+std::vector<validate::SampleSplit> Splits(const ValidateOptions& o, const Dataset& dataset) {
   if (o.loo && !o.holdout_text.empty()) throw Error("give --holdout or --loo, not both");
-  if (dataset.samples.size() < 3) {
-    throw Error(dataset.manifest_path + " has " + std::to_string(dataset.samples.size()) +
-                " samples; validation needs at least one interior sample besides the two "
-                "ends");
+  if (o.holdout_text.empty()) return validate::LeaveOneOutSplits(dataset);
+  try {
+    return {validate::HoldoutSplit(dataset, SplitList(o.holdout_text))};
+  } catch (const Error& e) {
+    throw Error(std::string("--holdout: ") + e.what());
   }
-  if (!o.holdout_text.empty()) return {ParseHoldouts(o.holdout_text, dataset)};
-  std::vector<std::vector<double>> splits;
-  for (size_t i = 1; i + 1 < dataset.samples.size(); ++i) {
-    splits.push_back({dataset.samples[i].x_atomic});
-  }
-  return splits;
 }
 
 std::vector<std::string> ParseMethods(const std::string& text) {
@@ -190,7 +171,7 @@ void Run(const ValidateOptions& o) {
     if (!(a >= 0 && a < 90)) throw Error("--angles: " + Format(a) + " lies outside 0-90 degrees");
   }
   options.mode = o.holdout_text.empty() ? "loo" : "holdout";
-  const std::vector<std::vector<double>> splits = Splits(o, dataset);
+  const std::vector<validate::SampleSplit> splits = Splits(o, dataset);
   const color::Colorimeter colorimeter = LoadColorimeter(o.illuminant, o.observer);
   PrepareOutput(o.out);
 
@@ -234,10 +215,12 @@ void RegisterValidate(CLI::App& app) {
                   "Data set: folder with dataset.json, a manifest, or a bundled set's name")
       ->required();
   cmd->add_option("--holdout", o->holdout_text,
-                  "Hold out these interior samples together (comma-separated compositions; "
-                  "the manifest's numbers or 75at%, 75wt%, 18k)");
+                  "Hold out these samples together, comma-separated: a sample's file (that "
+                  "replicate alone) or a composition (every replicate there; the manifest's "
+                  "numbers or 75at%, 75wt%, 18k); not every sample of an end composition");
   cmd->add_flag("--loo", o->loo,
-                "Leave one out: hold out each interior sample in turn (the default)");
+                "Leave one out: hold out each interior composition in turn, with all its "
+                "replicates (the default)");
   cmd->add_option("--methods", o->methods,
                   "Methods to compare, comma-separated, or all (every method and auto, which "
                   "runs its own leave-one-out inside every fold, on the training samples only); "

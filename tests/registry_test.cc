@@ -140,7 +140,7 @@ TEST(Registry, AMethodRegisteredHereIsKnownEverywhere) {
   options.angles_deg = {0.0};
   options.mode = "holdout";
   const validate::ValidationReport report =
-      validate::ComputeValidation(data, {{0.5}}, cm, options, {});
+      validate::ComputeValidation(data, {validate::SplitAtCompositions(data, {0.5})}, cm, options, {});
   ASSERT_EQ(report.holdouts.size(), 1u);
   EXPECT_EQ(report.holdouts[0].results.count("test-nearest"), 1u);
 }

@@ -126,7 +126,8 @@ class Dataset:
     composition = property(lambda self: self._core.composition)
     manifest_path = property(lambda self: self._core.manifest_path)
     warnings = property(lambda self: list(self._core.warnings))
-    x_atomic = property(lambda self: self._core.x_atomic, doc="samples' compositions, sorted")
+    x_atomic = property(lambda self: self._core.x_atomic,
+                        doc="samples' compositions, sorted (repeated for replicates)")
 
     @property
     def samples(self) -> list:
@@ -147,8 +148,8 @@ class Dataset:
             self.manifest_path, x, ", ".join("%g" % v for v in self.x_atomic)))
 
     def without(self, x: Iterable) -> "Dataset":
-        """The data set without the samples at compositions x: each a sample's atomic
-        fraction, the number its manifest gives it, or a string such as "85wt%"."""
+        """The data set without the samples at compositions x (every replicate there): each a
+        sample's atomic fraction, the number its manifest gives it, or a string such as "85wt%"."""
         return Dataset(_core_set=self._core.without([self._match(v) for v in x]))
 
     def select(self, x: Iterable) -> "Dataset":
@@ -366,8 +367,10 @@ def validate(dataset: Union[Dataset, str], methods: Union[None, str, Sequence[st
              illuminant: str = "D65", observer: int = 2, html=None, json=None,
              progress: Optional[Callable[[str], None]] = None) -> dict:
     """Held-out validation, as ``alloycolor validate``: each method is refitted without the
-    held-out samples (``holdout``: their compositions; default: leave each interior sample
-    out in turn) and scored against them (CIEDE2000 per angle, reflectance and n, k errors).
+    held-out samples and scored against them, one result per held-out sample. ``holdout``:
+    compositions (every replicate there) or sample files (that replicate alone), as
+    ``alloycolor validate --holdout``; default: leave each interior composition out in turn,
+    with all its replicates. Scored (CIEDE2000 per angle, reflectance and n, k errors).
     methods: names of :func:`methods` and "auto" (which runs its own leave-one-out inside
     every split, on the training samples only), a comma-separated string of them, or "all";
     default: those the registry marks ``validate_default``, as ``alloycolor validate``.
@@ -375,28 +378,23 @@ def validate(dataset: Union[Dataset, str], methods: Union[None, str, Sequence[st
     self-contained HTML page to the paths given as ``json`` and ``html`` (atomically)."""
     if not isinstance(dataset, Dataset):
         dataset = Dataset(dataset)
-    xs = list(dataset.x_atomic)
-    if len(xs) < 3:
-        raise Error("%s has %d samples; validation needs at least one interior sample "
-                    "besides the two ends" % (dataset.manifest_path, len(xs)))
     if holdout is None:
-        splits, mode = [[v] for v in xs[1:-1]], "loo"
+        names, mode = [], "loo"
     else:
-        chosen = []
-        for v in holdout:
-            m = dataset._match(v)
-            if m not in chosen:
-                chosen.append(m)
-        if not chosen:
+        if isinstance(holdout, (str, os.PathLike)) or not isinstance(holdout, Iterable):
+            holdout = [holdout]
+        names = [os.fspath(v) if isinstance(v, (str, os.PathLike)) else repr(float(v))
+                 for v in holdout]
+        if not names:
             raise Error("holdout: no composition given")
-        splits, mode = [chosen], "holdout"
+        mode = "holdout"
     if methods is None:
         methods = [m["name"] for m in _core.methods() if m["validate_default"]]
     elif methods == "all":
         methods = [m["name"] for m in _core.methods()] + ["auto"]
     elif isinstance(methods, str):
         methods = [m.strip() for m in methods.split(",")]
-    return _core._validate(dataset._core, list(methods), splits, mode,
+    return _core._validate(dataset._core, list(methods), names, mode,
                            [float(a) for a in np.atleast_1d(angles_deg)], illuminant,
                            int(observer), "" if html is None else os.fspath(html),
                            "" if json is None else os.fspath(json), progress)

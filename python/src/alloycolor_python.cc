@@ -431,7 +431,7 @@ PYBIND11_MODULE(_alloycolor, m) {
 
   m.def("_validate",
         [](const Dataset& dataset, const std::vector<std::string>& methods,
-           const std::vector<std::vector<double>>& splits, const std::string& mode,
+           const std::vector<std::string>& holdout, const std::string& mode,
            const std::vector<double>& angles_deg, const std::string& illuminant, int observer_deg,
            const std::string& html_path, const std::string& json_path, const py::object& progress) {
           for (const std::string& method : methods) {
@@ -440,6 +440,18 @@ PYBIND11_MODULE(_alloycolor, m) {
           for (double a : angles_deg) {
             if (!(a >= 0 && a < 90))
               throw Error("angles_deg: " + std::to_string(a) + " lies outside 0-90 degrees");
+          }
+          // As `alloycolor validate`: no names, leave each interior composition out (with
+          // its replicates); otherwise one split of files and compositions.
+          std::vector<validate::SampleSplit> splits;
+          if (holdout.empty()) {
+            splits = validate::LeaveOneOutSplits(dataset);
+          } else {
+            try {
+              splits = {validate::HoldoutSplit(dataset, holdout)};
+            } catch (const Error& e) {
+              throw Error(std::string("holdout: ") + e.what());
+            }
           }
           validate::ValidationOptions options;
           // As `alloycolor validate`: fits score colour under D65, 2 degrees.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 #include <utility>
 
@@ -272,6 +273,12 @@ Shape ShapeFromName(const std::string& name) {
 }
 
 std::string ShapeName(Shape shape) { return shape == Shape::kSphere ? "sphere" : "ring"; }
+
+std::string AlloyLabel(const AlloyModel& model, double x_atomic) {
+  char x[32];
+  std::snprintf(x, sizeof x, "%.4g", x_atomic);
+  return model.system().Name() + " x=" + x;
+}
 
 Background BackgroundFromName(const std::string& name) {
   if (name == "transparent") return Background::kTransparent;

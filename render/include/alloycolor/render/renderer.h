@@ -48,6 +48,7 @@
 #include <vector>
 
 #include "alloycolor/color/colorimetry.h"
+#include "alloycolor/model/alloy_model.h"
 #include "alloycolor/render/image.h"
 #include "alloycolor/render/shading.h"
 
@@ -91,6 +92,9 @@ struct NormalMap {
 };
 // Throws Error for a size outside 1-kMaxTileSize.
 NormalMap TraceNormals(Shape shape, int size);
+
+// How a picture names an alloy's tile (its title, its errors): "Au-Ag x=0.75".
+std::string AlloyLabel(const AlloyModel& model, double x_atomic);
 
 namespace internal {
 struct TilePlan;

@@ -57,12 +57,9 @@ render::RenderOptions CheckedOptions(const RenderCommandOptions& o) {
   } catch (const Error& e) {
     throw Error(std::string("--light: ") + e.what());
   }
-  const std::string background =
-      o.background.empty()
-          ? (options.lighting == render::Lighting::kUniform ? "transparent" : "backdrop")
-          : o.background;
   try {
-    options.background = render::BackgroundFromName(background);
+    options.background = o.background.empty() ? render::DefaultBackground(options.lighting)
+                                               : render::BackgroundFromName(o.background);
   } catch (const Error& e) {
     throw Error(std::string("--background: ") + e.what());
   }

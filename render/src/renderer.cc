@@ -286,6 +286,10 @@ Background BackgroundFromName(const std::string& name) {
   throw Error("unknown background '" + name + "' (transparent, backdrop)");
 }
 
+Background DefaultBackground(Lighting lighting) {
+  return lighting == Lighting::kUniform ? Background::kTransparent : Background::kBackdrop;
+}
+
 NormalMap TraceNormals(Shape shape, int size) {
   if (size < 1 || size > kMaxTileSize) {
     throw Error("image size " + std::to_string(size) + " lies outside 1-" +

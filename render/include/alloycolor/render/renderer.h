@@ -70,6 +70,9 @@ std::string ShapeName(Shape shape);
 enum class Background { kTransparent, kBackdrop };
 // "transparent" or "backdrop".
 Background BackgroundFromName(const std::string& name);
+// The background unless one is chosen: transparent in uniform light (the object's colour
+// alone), the backdrop in studio light.
+Background DefaultBackground(Lighting lighting);
 
 struct RenderOptions {
   Shape shape = Shape::kSphere;

@@ -77,7 +77,7 @@ def _columns_text(columns) -> str:
 def _render_args(shape, size, lighting, roughness, background, illuminant, observer, direct,
                  linear) -> tuple:
     """The compiled renderer's arguments after the material's own."""
-    return (shape, int(size), lighting, float(roughness), background, illuminant,
+    return (shape, int(size), lighting, float(roughness), background or "", illuminant,
             int(observer), bool(direct), bool(linear))
 
 
@@ -108,7 +108,7 @@ class Spectrum:
         return color(self, angle_deg=angle_deg, illuminant=illuminant, observer=observer)
 
     def render(self, shape="sphere", size=256, lighting="studio", roughness=0.0,
-               background="backdrop", illuminant="D65", observer=2, linear=False,
+               background=None, illuminant="D65", observer=2, linear=False,
                direct=False) -> np.ndarray:
         """An image of a solid of the measured metal; see :meth:`Model.render`."""
         return self._core._render(*_render_args(shape, size, lighting, roughness, background,
@@ -258,11 +258,12 @@ class Model:
         return self._core.to_json()
 
     def render(self, x, shape="sphere", size=256, lighting="studio", roughness=0.0,
-               background="backdrop", illuminant="D65", observer=2, linear=False,
+               background=None, illuminant="D65", observer=2, linear=False,
                direct=False) -> np.ndarray:
         """An image of a solid of the alloy at x, as ``alloycolor render`` draws one tile:
         (size, size, 4), a sphere or ring (``shape``) in "studio" or "uniform" ``lighting``,
-        GGX ``roughness`` 0-1, a "backdrop" or "transparent" ``background``; uint8 sRGBA, or
+        GGX ``roughness`` 0-1, a "backdrop" or "transparent" ``background`` (default: as the
+        program, transparent in uniform light, else the backdrop); uint8 sRGBA, or
         float32 linear sRGB with alpha when ``linear``. Shaded from the table of XYZ against
         cos(angle) checked against direct spectral evaluation (Error when no table is
         accurate enough, as the program refuses), or with ``direct`` from the spectral

@@ -254,7 +254,7 @@ py::array_t<float> ToNumpy(const render::LinearImage& image) {
 
 // One tile as `alloycolor render` shades it: from the guarded table (render::GuardedTable),
 // or by direct spectral evaluation at every pixel. index_on gives n + ik on a colorimeter's
-// grid; label names the material in errors.
+// grid; label names the material in errors; an empty background is the lighting's default.
 template <typename IndexOn>
 py::object RenderTile(const IndexOn& index_on, const std::string& label, const std::string& shape,
                       int size, const std::string& lighting, double roughness,
@@ -265,7 +265,8 @@ py::object RenderTile(const IndexOn& index_on, const std::string& label, const s
   options.size = size;
   options.lighting = render::LightingFromName(lighting);
   options.roughness = roughness;
-  options.background = render::BackgroundFromName(background);
+  options.background = background.empty() ? render::DefaultBackground(options.lighting)
+                                           : render::BackgroundFromName(background);
   render::LinearImage image;
   {
     py::gil_scoped_release release;

@@ -137,18 +137,20 @@ def read_png_rgba8(path):
     return np.frombuffer(b"".join(rows), dtype=np.uint8).reshape(height, width, 4)
 
 
+# Without a background both take the lighting's default.
 RENDER_SETTINGS = [
-    dict(shape="sphere", lighting="studio", roughness=0.0, background="backdrop"),
+    dict(shape="sphere", lighting="studio", roughness=0.0),
     dict(shape="ring", lighting="studio", roughness=0.3, background="transparent"),
-    dict(shape="sphere", lighting="uniform", roughness=0.0, background="transparent",
-         illuminant="A", observer=10),
+    dict(shape="sphere", lighting="uniform", roughness=0.0, illuminant="A", observer=10),
+    dict(shape="ring", lighting="uniform", roughness=0.1, background="backdrop"),
 ]
 
 
 def render_args(size, s):
+    background = ["--background", s["background"]] if "background" in s else []
     return ["--size", size, "--shape", s["shape"], "--light", s["lighting"], "--roughness",
-            s["roughness"], "--background", s["background"], "--illuminant",
-            s.get("illuminant", "D65"), "--observer", s.get("observer", 2), "--quiet"]
+            s["roughness"], *background, "--illuminant", s.get("illuminant", "D65"),
+            "--observer", s.get("observer", 2), "--quiet"]
 
 
 @pytest.mark.parametrize("settings", RENDER_SETTINGS)

@@ -36,22 +36,12 @@ std::string Loss(const exports::AngularError& e) {
   return buf;
 }
 
-// A library check whose message gains the option's name.
-template <typename Check>
-void Checked(const char* option, const Check& check) {
-  try {
-    check();
-  } catch (const Error& e) {
-    throw Error(std::string(option) + ": " + e.what());
-  }
-}
-
 void Run(const ExportOptions& o) {
-  Checked("--format", [&] { exports::CheckExportFormat(o.settings.format); });
+  exports::CheckExportFormat(o.settings.format, "--format");
   if (o.out.empty()) throw Error("--out: give a file name prefix");
-  Checked("--roughness", [&] { exports::CheckExportRoughness(o.settings.roughness); });
+  exports::CheckExportRoughness(o.settings.roughness, "--roughness");
   CheckOutputFolder(o.out, "--out");
-  Checked("--scene-dir", [&] { exports::CheckExportSceneDir(o.settings.scene_dir); });
+  exports::CheckExportSceneDir(o.settings.scene_dir, "--scene-dir");
   const color::Colorimeter d65 = LoadColorimeter("D65", 2);
   exports::ExportMaterial material;
   if (o.material.measured()) {

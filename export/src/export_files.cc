@@ -28,16 +28,6 @@ std::string Identifier(const std::string& text) {
   return id;
 }
 
-// A library check whose message gains the setting's name.
-template <typename Check>
-void Named(const char* setting, const Check& check) {
-  try {
-    check();
-  } catch (const Error& e) {
-    throw Error(std::string(setting) + ": " + e.what());
-  }
-}
-
 // PREFIX.eta.spd, PREFIX.k.spd, PREFIX.pbrt, PREFIX.xml.
 void AddSpectralFiles(const ExportMaterial& material, const std::string& prefix,
                       const std::string& scene_dir, const std::vector<std::string>& header,
@@ -110,32 +100,32 @@ ExportMaterial MeasuredExportMaterial(const color::Colorimeter& d65, const NkSpe
           Identifier(stem.substr(0, stem.find_last_of('.')))};
 }
 
-void CheckExportFormat(const std::string& format) {
+void CheckExportFormat(const std::string& format, const std::string& name) {
   std::string names;
   for (const std::string& f : ExportFormats()) {
     if (f == format) return;
     names += (names.empty() ? "" : ", ") + f;
   }
-  throw Error("unknown format '" + format + "' (" + names + ")");
+  throw Error(name + ": unknown format '" + format + "' (" + names + ")");
 }
 
-void CheckExportSceneDir(const std::string& scene_dir) {
+void CheckExportSceneDir(const std::string& scene_dir, const std::string& name) {
   if (!scene_dir.empty() && !std::filesystem::is_directory(scene_dir)) {
-    throw Error("no folder " + scene_dir);
+    throw Error(name + ": no folder " + scene_dir);
   }
 }
 
-void CheckExportRoughness(double roughness) {
+void CheckExportRoughness(double roughness, const std::string& name) {
   if (!(roughness >= 0.0 && roughness <= 1.0)) {
-    throw Error(Format("%g", roughness) + " is not a number in [0, 1]");
+    throw Error(name + ": " + Format("%g", roughness) + " is not a number in [0, 1]");
   }
 }
 
 ExportFiles BuildExport(const color::Colorimeter& d65, const ExportMaterial& material,
                         const std::string& prefix, const ExportSettings& settings) {
-  Named("format", [&] { CheckExportFormat(settings.format); });
-  Named("scene_dir", [&] { CheckExportSceneDir(settings.scene_dir); });
-  Named("roughness", [&] { CheckExportRoughness(settings.roughness); });
+  CheckExportFormat(settings.format, "format");
+  CheckExportSceneDir(settings.scene_dir, "scene_dir");
+  CheckExportRoughness(settings.roughness, "roughness");
   if (prefix.empty()) throw Error("export: give a file name prefix");
   const std::string generator = std::string("alloycolor ") + ALLOYCOLOR_VERSION;
   const std::vector<std::string> header = {"written by " + generator};

@@ -51,11 +51,11 @@ struct ExportSettings {
   double roughness = 0.0;      // materialx, gltf: in [0, 1]
 };
 
-// Each check throws Error saying what is wrong, without the setting's name (the face
-// adds the name it gives the setting).
-void CheckExportFormat(const std::string& format);
-void CheckExportSceneDir(const std::string& scene_dir);
-void CheckExportRoughness(double roughness);
+// Each check throws Error saying what is wrong, after `name`: the name the face gives the
+// setting ("--format", "format").
+void CheckExportFormat(const std::string& format, const std::string& name);
+void CheckExportSceneDir(const std::string& scene_dir, const std::string& name);
+void CheckExportRoughness(double roughness, const std::string& name);
 
 struct ExportFiles {
   std::vector<OutputFile> files;  // in the order above

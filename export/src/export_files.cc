@@ -83,15 +83,19 @@ const std::vector<std::string>& ExportFormats() {
   return formats;
 }
 
+std::string AlloyDescription(const AlloyModel& model, double x_atomic, const std::string& origin) {
+  const AlloySystem& system = model.system();
+  return system.Name() + " at x = " + Format("%.6g", x_atomic) + " (atomic fraction of " +
+         system.a.symbol + "; " +
+         Format("%.4g", 100.0 * WeightFromAtomicFraction(x_atomic, system)) + " wt% " +
+         system.a.symbol + "), " + model.method() + " model " + origin;
+}
+
 ExportMaterial AlloyExportMaterial(const color::Colorimeter& d65, const AlloyModel& model,
                                    double x_atomic, const std::string& origin) {
-  const AlloySystem& system = model.system();
-  const std::string description =
-      system.Name() + " at x = " + Format("%.6g", x_atomic) + " (atomic fraction of " +
-      system.a.symbol + "; " + Format("%.4g", 100.0 * WeightFromAtomicFraction(x_atomic, system)) +
-      " wt% " + system.a.symbol + "), " + model.method() + " model " + origin;
-  return {ModelSpectra(model, x_atomic, description), color::IndexOnGrid(d65, model, x_atomic),
-          Identifier(system.Name() + "_x" + Format("%.6g", x_atomic))};
+  return {ModelSpectra(model, x_atomic, AlloyDescription(model, x_atomic, origin)),
+          color::IndexOnGrid(d65, model, x_atomic),
+          Identifier(model.system().Name() + "_x" + Format("%.6g", x_atomic))};
 }
 
 ExportMaterial MeasuredExportMaterial(const color::Colorimeter& d65, const NkSpectrum& nk) {

@@ -299,7 +299,7 @@ class Model:
                                                                   roughness))
 
     def _material(self, x: float) -> str:
-        return "%s at x = %.6g (%s model)" % (self.system, x, self.method)
+        return self._core._description(x, self._origin)  # as the export files say
 
     def __repr__(self):
         return "Model(%s, %s, x %g-%g, %g-%g nm)" % (

@@ -485,6 +485,10 @@ PYBIND11_MODULE(_alloycolor, m) {
                  },
                  prefix, format, scene_dir, roughness);
            })
+      .def("_description",
+           [](const AlloyModel& a, double x, const std::string& origin) {
+             return exports::AlloyDescription(a, x, origin);
+           })
       .def("_write_spd", [](const AlloyModel& a, double x, const std::string& material,
                             const std::string& eta_path, const std::string& k_path) {
         a.CheckInRange(x);

@@ -85,7 +85,9 @@ def test_fitted_model_export_names_its_data_as_the_program_does(binary, tmp_path
     files = compare_exports(binary, ["--data", "Au-Ag", "--method", "paper", "--x", "0.75",
                                      "--format", "all"],
                             lambda prefix: model.export(0.75, prefix), tmp_path / "auag")
-    assert b"paper model built from data Au-Ag" in files[str(tmp_path / "auag.eta.spd")]
+    eta = files[str(tmp_path / "auag.eta.spd")].decode()
+    assert "paper model built from data Au-Ag" in eta
+    assert model.spectra(0.75)["material"] in eta  # spectra and write_spd describe it so too
 
 
 def test_export_refuses_bad_settings_and_writes_nothing(model_file, tmp_path):

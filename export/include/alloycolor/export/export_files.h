@@ -38,8 +38,12 @@ struct ExportMaterial {
   std::string id;
 };
 
-// An alloy at x_atomic. `origin` ends the material's description: "from m.json", "built
-// from data Au-Ag". `d65` must be a D65, 2-degree colorimeter.
+// How export files describe an alloy at x_atomic: "Au-Ag at x = 0.75 (atomic fraction of
+// Au; 84.56 wt% Au), paper model " + origin, origin saying where the model came from
+// ("from m.json", "built from data Au-Ag").
+std::string AlloyDescription(const AlloyModel& model, double x_atomic, const std::string& origin);
+
+// An alloy at x_atomic, described as above. `d65` must be a D65, 2-degree colorimeter.
 ExportMaterial AlloyExportMaterial(const color::Colorimeter& d65, const AlloyModel& model,
                                    double x_atomic, const std::string& origin);
 // A measured metal; nk.source (its file) names it.

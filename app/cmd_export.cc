@@ -49,10 +49,10 @@ void Run(const ExportOptions& o) {
   } else {
     const auto model = o.material.LoadModel(o.quiet);
     const ModelSource& source = o.material.source;
-    material = exports::AlloyExportMaterial(
-        d65, *model, o.material.Compositions(*model, true)[0],
-        source.model_path.empty() ? "built from data " + source.data_dir
-                                  : "from " + source.model_path);
+    material = exports::AlloyExportMaterial(d65, *model, o.material.Compositions(*model, true)[0],
+                                            source.model_path.empty()
+                                                ? "built from data " + source.data_dir
+                                                : "from " + source.model_path);
   }
   // Everything is formatted before the first file is written.
   const exports::ExportFiles e = exports::BuildExport(d65, material, o.out, o.settings);

@@ -59,7 +59,7 @@ render::RenderOptions CheckedOptions(const RenderCommandOptions& o) {
   }
   try {
     options.background = o.background.empty() ? render::DefaultBackground(options.lighting)
-                                               : render::BackgroundFromName(o.background);
+                                              : render::BackgroundFromName(o.background);
   } catch (const Error& e) {
     throw Error(std::string("--background: ") + e.what());
   }
@@ -96,8 +96,8 @@ std::vector<Material> LoadMaterials(const RenderCommandOptions& o,
   }
   const auto model = o.material.LoadModel(o.quiet);
   for (double x : o.material.Compositions(*model, false)) {
-    materials.push_back({render::AlloyLabel(*model, x),
-                         color::IndexOnGrid(colorimeter, *model, x)});
+    materials.push_back(
+        {render::AlloyLabel(*model, x), color::IndexOnGrid(colorimeter, *model, x)});
   }
   *description = model->system().Name() + ", " + model->method() + " model" +
                  (o.material.source.model_path.empty() ? " from data " + o.material.source.data_dir

@@ -247,9 +247,9 @@ TEST(ShadingTest, GuardedTableKeepsTheDefaultSizeForMetals) {
     const CheckedTable checked = GuardedTable(direct, "gold");
     EXPECT_EQ(checked.table.size(), kReflectionTableSize) << alpha;
     EXPECT_LE(checked.error, kTableErrorLimit) << alpha;
-    EXPECT_EQ(checked.error, ReflectionTableError(checked.table, direct,
-                                                  alpha > 0 ? kRoughTableCheckSamples
-                                                            : kTableCheckSamples));
+    EXPECT_EQ(checked.error,
+              ReflectionTableError(checked.table, direct,
+                                   alpha > 0 ? kRoughTableCheckSamples : kTableCheckSamples));
   }
 }
 

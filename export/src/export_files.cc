@@ -47,8 +47,8 @@ void AddSpectralFiles(const ExportMaterial& material, const std::string& prefix,
   files->push_back({k_file, SpdText(spectra, false, header)});
   files->push_back(
       {prefix + ".pbrt", PbrtMaterialText(spectra, eta_name, k_name, names_note, header)});
-  files->push_back({prefix + ".xml", MitsubaBsdfXml(spectra, material.id, eta_name, k_name,
-                                                    names_note, header)});
+  files->push_back({prefix + ".xml",
+                    MitsubaBsdfXml(spectra, material.id, eta_name, k_name, names_note, header)});
 }
 
 nlohmann::json F82Document(const std::string& material, const nlohmann::json& summary,
@@ -143,7 +143,8 @@ ExportFiles BuildExport(const color::Colorimeter& d65, const ExportMaterial& mat
   out.summary = RendererMaterialsJson(out.materials, name);
   const RendererMaterials& m = out.materials;
   if (wanted("rgb-conductor")) {
-    out.files.push_back({prefix + ".rgb.xml", MitsubaRgbConductorXml(m, name, material.id, header)});
+    out.files.push_back(
+        {prefix + ".rgb.xml", MitsubaRgbConductorXml(m, name, material.id, header)});
     out.files.push_back(
         {prefix + ".blender.py", BlenderMetallicScript(m, name, material.id, header)});
   }

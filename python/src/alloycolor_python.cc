@@ -266,7 +266,7 @@ py::object RenderTile(const IndexOn& index_on, const std::string& label, const s
   options.lighting = render::LightingFromName(lighting);
   options.roughness = roughness;
   options.background = background.empty() ? render::DefaultBackground(options.lighting)
-                                           : render::BackgroundFromName(background);
+                                          : render::BackgroundFromName(background);
   render::LinearImage image;
   {
     py::gil_scoped_release release;
@@ -293,8 +293,7 @@ py::dict SpectraDict(const exports::ConductorSpectra& s) {
 // with the material's notes. material_on builds the material from the D65 colorimeter.
 template <typename MaterialOn>
 py::object WriteExport(const MaterialOn& material_on, const std::string& prefix,
-                       const std::string& format, const std::string& scene_dir,
-                       double roughness) {
+                       const std::string& format, const std::string& scene_dir, double roughness) {
   const exports::ExportSettings settings{format, scene_dir, roughness};
   nlohmann::json doc;
   {
@@ -351,17 +350,16 @@ PYBIND11_MODULE(_alloycolor, m) {
       .def_property_readonly("k", [](const NkSpectrum& s) { return ToArray(s.k); })
       .def("_color", &SpectrumColors)
       .def("_render",
-           [](const NkSpectrum& nk, const std::string& shape, int size,
-              const std::string& lighting, double roughness, const std::string& background,
-              const std::string& illuminant, int observer_deg, bool direct, bool linear) {
+           [](const NkSpectrum& nk, const std::string& shape, int size, const std::string& lighting,
+              double roughness, const std::string& background, const std::string& illuminant,
+              int observer_deg, bool direct, bool linear) {
              return RenderTile(
-                 [&](const color::Colorimeter& c) { return color::IndexOnGrid(c, nk); },
-                 nk.source, shape, size, lighting, roughness, background, illuminant,
-                 observer_deg, direct, linear);
+                 [&](const color::Colorimeter& c) { return color::IndexOnGrid(c, nk); }, nk.source,
+                 shape, size, lighting, roughness, background, illuminant, observer_deg, direct,
+                 linear);
            })
-      .def("_export", [](const NkSpectrum& nk, const std::string& prefix,
-                         const std::string& format, const std::string& scene_dir,
-                         double roughness) {
+      .def("_export", [](const NkSpectrum& nk, const std::string& prefix, const std::string& format,
+                         const std::string& scene_dir, double roughness) {
         return WriteExport(
             [&](const color::Colorimeter& d65) { return exports::MeasuredExportMaterial(d65, nk); },
             prefix, format, scene_dir, roughness);
@@ -467,8 +465,8 @@ PYBIND11_MODULE(_alloycolor, m) {
              a.CheckInRange(x);
              return RenderTile(
                  [&](const color::Colorimeter& c) { return color::IndexOnGrid(c, a, x); },
-                 render::AlloyLabel(a, x), shape, size, lighting, roughness, background,
-                 illuminant, observer_deg, direct, linear);
+                 render::AlloyLabel(a, x), shape, size, lighting, roughness, background, illuminant,
+                 observer_deg, direct, linear);
            })
       .def("_spectra",
            [](const AlloyModel& a, double x, const std::string& material) {

@@ -119,7 +119,8 @@ def read_png_rgba8(path):
     stride, bpp = 4 * width, 4
     rows, prev = [], bytearray(stride)
     for j in range(height):
-        kind, line = raw[j * (stride + 1)], bytearray(raw[j * (stride + 1) + 1:(j + 1) * (stride + 1)])
+        start = j * (stride + 1)
+        kind, line = raw[start], bytearray(raw[start + 1:start + 1 + stride])
         for i in range(stride):
             a = line[i - bpp] if i >= bpp else 0
             b = prev[i]

@@ -652,5 +652,24 @@ TEST(RenderTest, BadInputIsRefusedWithOneLineAndNoFile) {
   fs::remove_all(dir);
 }
 
+TEST(RenderTest, MaterialNoTableRendersIsRefusedUnlessDirect) {
+  const std::string dir = MakeTempDir();
+  std::string csv = "lambda_nm,n,k\n";
+  for (int l = 300; l <= 900; l += 10) csv += std::to_string(l) + ",1.00000001,0\n";
+  alloycolor::testing::WriteText(dir + "/nearly-vacuum.csv", csv);
+  const std::string out = dir + "/x.png";
+  const auto refused =
+      RunProgram({"render", "--nk", dir + "/nearly-vacuum.csv", "--size", "16", "--out", out});
+  EXPECT_EQ(refused.status, 2);
+  EXPECT_NE(refused.err.find("above the limit"), std::string::npos) << refused.err;
+  EXPECT_NE(refused.err.find("(--direct)"), std::string::npos) << refused.err;
+  EXPECT_FALSE(fs::exists(out));
+  const auto direct = RunProgram({"render", "--nk", dir + "/nearly-vacuum.csv", "--size", "16",
+                                  "--direct", "--quiet", "--out", out});
+  EXPECT_EQ(direct.status, 0) << direct.err;
+  EXPECT_TRUE(fs::exists(out));
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace alloycolor::render

@@ -74,6 +74,19 @@ def _columns_text(columns) -> str:
     return ",".join(parts)
 
 
+def _render_args(shape, size, lighting, roughness, background, illuminant, observer, direct,
+                 linear) -> tuple:
+    """The compiled renderer's arguments after the material's own."""
+    return (shape, int(size), lighting, float(roughness), background or "", illuminant,
+            int(observer), bool(direct), bool(linear))
+
+
+def _export_args(prefix, format, scene_dir, roughness) -> tuple:
+    """The compiled export's arguments after the material's own."""
+    return (os.fspath(prefix), format, "" if scene_dir is None else os.fspath(scene_dir),
+            float(roughness))
+
+
 class Spectrum:
     """Measured optical constants: ``lambda_nm`` (increasing), ``n``, ``k`` as numpy arrays
     and ``nk = n + ik``; ``source`` names the file, ``warnings`` what the reader noticed."""
@@ -93,6 +106,19 @@ class Spectrum:
     def color(self, angle_deg=0.0, illuminant="D65", observer=2) -> dict:
         """Colour of the polished metal; see :func:`alloycolor.color`."""
         return color(self, angle_deg=angle_deg, illuminant=illuminant, observer=observer)
+
+    def render(self, shape="sphere", size=256, lighting="studio", roughness=0.0,
+               background=None, illuminant="D65", observer=2, linear=False,
+               direct=False) -> np.ndarray:
+        """An image of a solid of the measured metal; see :meth:`Model.render`."""
+        return self._core._render(*_render_args(shape, size, lighting, roughness, background,
+                                                illuminant, observer, direct, linear))
+
+    def export(self, prefix: Union[str, os.PathLike], format: str = "all",
+               scene_dir: Union[None, str, os.PathLike] = None, roughness: float = 0.0) -> dict:
+        """Writes exactly the files ``alloycolor export --nk FILE`` writes; see
+        :meth:`Model.export`."""
+        return self._core._export(*_export_args(prefix, format, scene_dir, roughness))
 
     def __repr__(self):
         return "Spectrum(%r, %d wavelengths, %g-%g nm)" % (
@@ -115,10 +141,13 @@ class Dataset:
     def __init__(self, path_or_name: Union[str, os.PathLike, None] = None, *, _core_set=None):
         if _core_set is None:
             arg = os.fspath(path_or_name)
+            self._given = arg  # as `alloycolor --data` would be given it
             bundled = pathlib.Path(data_root()) / arg
             if not os.path.exists(arg) and arg and not os.path.isabs(arg) and bundled.exists():
                 arg = str(bundled)
             _core_set = _core._Dataset(arg)
+        else:
+            self._given = _core_set.manifest_path
         self._core = _core_set
 
     name = property(lambda self: self._core.name)
@@ -182,8 +211,9 @@ class Model:
     """A fitted or loaded model of permittivity eps(lambda, x). Evaluate with :meth:`nk`,
     :meth:`permittivity` and :meth:`color`; save with :meth:`save`."""
 
-    def __init__(self, core):
+    def __init__(self, core, origin: str = "built in Python"):
         self._core = core
+        self._origin = origin  # how export describes the model: "from m.json", ...
 
     method = property(lambda self: self._core.method)
     system = property(lambda self: self._core.system)
@@ -229,13 +259,20 @@ class Model:
         return self._core.to_json()
 
     def render(self, x, shape="sphere", size=256, lighting="studio", roughness=0.0,
-               background="backdrop", illuminant="D65", observer=2,
-               linear=False) -> np.ndarray:
-        """An image of a solid (sphere or ring) of the alloy at x: (size, size, 4) uint8
-        sRGBA, or float32 linear sRGB with alpha when ``linear``."""
+               background=None, illuminant="D65", observer=2, linear=False,
+               direct=False) -> np.ndarray:
+        """An image of a solid of the alloy at x, as ``alloycolor render`` draws one tile:
+        (size, size, 4), a sphere or ring (``shape``) in "studio" or "uniform" ``lighting``,
+        GGX ``roughness`` 0-1, a "backdrop" or "transparent" ``background`` (default: as the
+        program, transparent in uniform light, else the backdrop); uint8 sRGBA, or
+        float32 linear sRGB with alpha when ``linear``. Shaded from the table of XYZ against
+        cos(angle) checked against direct spectral evaluation (Error when no table is
+        accurate enough, as the program refuses), or with ``direct`` from the spectral
+        Fresnel reflectance at every pixel (slow; roughness 0 only)."""
         xv = float(_broadcast_x(self, x))
-        return self._core._render(xv, shape, int(size), lighting, float(roughness), background,
-                                  illuminant, int(observer), bool(linear))
+        return self._core._render(xv, *_render_args(shape, size, lighting, roughness,
+                                                    background, illuminant, observer, direct,
+                                                    linear))
 
     def spectra(self, x, material: Optional[str] = None) -> dict:
         """n, k on the export grid (360-830 nm, 5 nm): {"lambda_nm", "n", "k", "notes"}."""
@@ -248,8 +285,22 @@ class Model:
         self._core._write_spd(xv, material or self._material(xv), os.fspath(eta_path),
                               os.fspath(k_path))
 
+    def export(self, x, prefix: Union[str, os.PathLike], format: str = "all",
+               scene_dir: Union[None, str, os.PathLike] = None, roughness: float = 0.0) -> dict:
+        """Writes exactly the files ``alloycolor export --x X --out PREFIX`` writes, as a set
+        (all or none replaced): ``format`` "spd" (PREFIX.eta.spd, .k.spd, .pbrt, .xml),
+        "rgb-conductor" (.rgb.xml, .blender.py), "f82" (.f82.json), "gulbrandsen"
+        (.gulbrandsen.json), "materialx" (.mtlx), "gltf" (.gltf) or "all"; ``scene_dir``:
+        name the .spd files relative to that folder (spd); ``roughness`` in [0, 1]
+        (materialx, gltf). The files describe the model by where it came from
+        (``load_model``'s path, ``fit``'s data set). Returns ``--json``'s document: every
+        fitted number and error, "format", "files" (the paths written) and "notes"."""
+        xv = float(_broadcast_x(self, x))
+        return self._core._export(xv, self._origin, *_export_args(prefix, format, scene_dir,
+                                                                  roughness))
+
     def _material(self, x: float) -> str:
-        return "%s at x = %.6g (%s model)" % (self.system, x, self.method)
+        return self._core._description(x, self._origin)  # as the export files say
 
     def __repr__(self):
         return "Model(%s, %s, x %g-%g, %g-%g nm)" % (
@@ -286,12 +337,13 @@ def fit(dataset: Union[Dataset, str], method: str = "auto", *, degree: Optional[
     return Model(_core._fit(dataset._core, method, _optional(degree, -1),
                             float(_optional(smoothing, -1.0)), _optional(space, ""), terms,
                             lo, hi, step,
-                            bool(covariance), progress))
+                            bool(covariance), progress),
+                 "built from data " + dataset._given)
 
 
 def load_model(path: Union[str, os.PathLike]) -> Model:
     """Reads a model file written by ``alloycolor fit --out`` or :meth:`Model.save`."""
-    return Model(_core._load_model(os.fspath(path)))
+    return Model(_core._load_model(os.fspath(path)), "from " + os.fspath(path))
 
 
 _COLOR_KEYS = ("xyz", "lab", "linear_srgb", "srgb8", "paper_rgb")

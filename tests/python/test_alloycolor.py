@@ -112,7 +112,7 @@ def test_many_compositions_table_within_tolerance(au_ag):
 # ---- the command line as a reference ---------------------------------------------------------
 
 def test_colour_of_paper_model_equals_command_line(binary, au_ag):
-    cli = run_json(binary, "color", "--data", "Au-Ag", "--x", "0.3,0.75", "--angle", "30")
+    cli = run_json(binary, "color", "--data", "Au-Ag", "--method", "paper", "--x", "0.3,0.75", "--angle", "30")
     model = ac.fit(au_ag, "paper")
     c = model.color([0.3, 0.75], angle_deg=30, sigma=True)
     for i, r in enumerate(cli["results"]):

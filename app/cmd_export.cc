@@ -11,6 +11,7 @@
 
 #include "alloycolor/color/material_color.h"
 #include "alloycolor/core/error.h"
+#include "alloycolor/core/json.h"
 #include "alloycolor/core/io.h"
 #include "alloycolor/export/material_files.h"
 #include "alloycolor/export/renderer_materials.h"
@@ -147,7 +148,7 @@ void Run(const ExportOptions& o) {
         {"blender_metallic_f82",
          {{"Base Color", summary["f82_tint"]["f0"]}, {"Edge Tint", summary["f82_tint"]["tint"]}}},
         {"generator", generator}};
-    files.emplace_back(o.out + ".f82.json", f82.dump(2) + "\n");
+    files.emplace_back(o.out + ".f82.json", JsonText(f82, 2) + "\n");
   }
   if (all || o.format == "gulbrandsen") {
     const nlohmann::json& g = summary["gulbrandsen"];
@@ -159,7 +160,7 @@ void Run(const ExportOptions& o) {
          {{"metalness", 1.0}, {"base_color", g["r"]}, {"specular_color", g["g"]}}},
         {"materialx_artistic_ior", {{"reflectivity", g["r"]}, {"edge_color", g["g"]}}},
         {"generator", generator}};
-    files.emplace_back(o.out + ".gulbrandsen.json", out.dump(2) + "\n");
+    files.emplace_back(o.out + ".gulbrandsen.json", JsonText(out, 2) + "\n");
   }
   if (all || o.format == "materialx") {
     files.emplace_back(o.out + ".mtlx",
@@ -192,7 +193,7 @@ void Run(const ExportOptions& o) {
     nlohmann::json written = nlohmann::json::array();
     for (const auto& file : files) written.push_back(file.first);
     out["files"] = written;
-    std::cout << out.dump(2) << "\n";
+    PrintOutput(JsonText(out, 2) + "\n");
   }
 }
 

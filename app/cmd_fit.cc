@@ -111,7 +111,10 @@ void Run(const FitOptions& o) {
     dataset = WithoutSamples(dataset, exclude);
   }
   std::unique_ptr<AlloyModel> old_model;
-  if (!o.from.empty()) old_model = ReadModelFile(o.from);
+  if (!o.from.empty()) {
+    old_model = ReadModelFile(o.from);
+    NoteInput(o.from);
+  }
   // Before the fit: the model must not replace an input (the manifest, a sample, --from).
   CheckOutputPath(o.out);
   if (o.lambda_step > 0) {

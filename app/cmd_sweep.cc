@@ -17,6 +17,7 @@
 #include "alloycolor/color/colorimetry.h"
 #include "alloycolor/color/sweep.h"
 #include "alloycolor/core/error.h"
+#include "alloycolor/core/json.h"
 #include "alloycolor/core/output.h"
 #include "alloycolor/core/text.h"
 #include "common.h"
@@ -159,7 +160,7 @@ void Run(const SweepOptions& o) {
   const color::XYZ white = colorimeter.White();
   const bool json = o.format == "json";
 
-  StreamOutput stream(o.out);
+  StreamOutput stream(o.out, &ProgramGuard());
   Output out(&stream);
   if (json) {
     nlohmann::json head = {{"system", model->system().Name()},
@@ -174,7 +175,7 @@ void Run(const SweepOptions& o) {
                                                 {"max_error_xyz", sweep.table_error()},
                                                 {"tolerance_xyz", color::kSweepTableTolerance}}
                                : nlohmann::json{{"method", "exact"}};
-    std::string text = head.dump();
+    std::string text = JsonText(head);
     text.pop_back();  // the closing brace; the results follow
     out.Text(text);
     out.Text(",\"results\":[\n");

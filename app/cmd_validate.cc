@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "alloycolor/core/error.h"
+#include "alloycolor/core/json.h"
 #include "alloycolor/core/io.h"
 #include "alloycolor/core/parallel.h"
 #include "common.h"
@@ -108,7 +109,7 @@ void PrepareOutput(const std::string& dir) {
   fs::create_directories(dir, ec);
   if (ec) throw Error("--out: cannot create folder '" + dir + "': " + ec.message());
   const std::string probe = (fs::path(dir) / ".alloycolor-write-check").string();
-  WriteFileAtomic(probe, "");
+  WriteFileAtomic(probe, "", &ProgramGuard());
   fs::remove(probe, ec);
   for (const char* name : {"report.json", "report.html"}) {
     CheckOutputPath((fs::path(dir) / name).string());  // no symlink or device to replace
@@ -207,7 +208,7 @@ void Run(const ValidateOptions& o) {
       validate::ComputeValidation(dataset, splits, colorimeter, options, progress);
   // Both files are rendered before either is written, and written as a set.
   const nlohmann::json json = ValidationJson(report);
-  const std::string json_text = json.dump(1) + "\n";
+  const std::string json_text = JsonText(json, 1) + "\n";
   const std::string html_text = ValidationHtml(report);
   namespace fs = std::filesystem;
   WriteOutputs({{(fs::path(o.out) / "report.json").string(), json_text},

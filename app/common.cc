@@ -35,7 +35,9 @@ std::string DataRoot() {
   return ALLOYCOLOR_SOURCE_DATA_DIR;
 }
 
-Dataset LoadDatasetArg(const std::string& arg) {
+namespace {
+
+Dataset LoadDatasetFrom(const std::string& arg) {
   std::error_code ec;
   if (!fs::exists(arg, ec)) {
     const fs::path bundled = fs::path(DataRoot()) / arg;
@@ -46,8 +48,24 @@ Dataset LoadDatasetArg(const std::string& arg) {
   return LoadDataset(arg);
 }
 
+}  // namespace
+
+Dataset LoadDatasetArg(const std::string& arg) {
+  Dataset dataset = LoadDatasetFrom(arg);
+  NoteInputs(dataset);
+  return dataset;
+}
+
 color::Colorimeter LoadColorimeter(const std::string& illuminant, int observer_deg) {
-  return color::Colorimeter::Load(DataRoot(), illuminant, observer_deg);
+  const std::string root = DataRoot();
+  color::Colorimeter colorimeter = color::Colorimeter::Load(root, illuminant, observer_deg);
+  // The colour tables read are inputs too: note the folder's files.
+  std::error_code ec;
+  for (fs::directory_iterator it(fs::path(root) / "cie", ec), end; !ec && it != end;
+       it.increment(ec)) {
+    if (it->is_regular_file(ec)) NoteInput(it->path().string());
+  }
+  return colorimeter;
 }
 
 namespace {
@@ -135,7 +153,7 @@ void WriteOutput(const std::string& path, const std::string& contents, bool quie
 }
 
 void WriteOutputs(const std::vector<OutputFile>& files, bool quiet) {
-  WriteFileSetAtomic(files);
+  WriteFileSetAtomic(files, &ProgramGuard());
   if (quiet) return;
   for (const OutputFile& file : files) {
     std::cerr << "alloycolor: wrote " << MessageLine(file.path) << "\n";
@@ -182,7 +200,11 @@ std::unique_ptr<AlloyModel> ModelSource::Load(bool quiet) const {
   if (!model_path.empty() && !data_dir.empty()) {
     throw Error("give either --model or --data, not both");
   }
-  if (!model_path.empty()) return ReadModelFile(model_path);
+  if (!model_path.empty()) {
+    auto model = ReadModelFile(model_path);
+    NoteInput(model_path);
+    return model;
+  }
   if (!data_dir.empty()) {
     const Dataset dataset = LoadDatasetArg(data_dir);
     if (!quiet) {
@@ -223,6 +245,7 @@ NkSpectrum MaterialSource::LoadMeasured(bool quiet) const {
   std::vector<std::string> warnings;
   NkSpectrum nk =
       ReadNkFile(nk_file, columns.empty() ? NkColumns{} : ParseNkColumns(columns), &warnings);
+  NoteInput(nk_file);
   if (!quiet) {
     for (const auto& w : warnings) Warn(w);
   }

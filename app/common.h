@@ -15,6 +15,7 @@
 #include "alloycolor/core/progress.h"
 #include "alloycolor/core/spectrum.h"
 #include "alloycolor/color/colorimetry.h"
+#include "output_guard.h"
 
 namespace alloycolor::app {
 
@@ -22,10 +23,11 @@ namespace alloycolor::app {
 // next to the program, else the source tree's data/.
 std::string DataRoot();
 
-// A data set given on the command line: a path, or the name of a bundled set ("Au-Ag").
+// A data set given on the command line: a path, or the name of a bundled set ("Au-Ag");
+// its files are noted as inputs (output_guard.h).
 Dataset LoadDatasetArg(const std::string& arg);
 
-// Colorimeter for --illuminant and --observer.
+// Colorimeter for --illuminant and --observer; the colour tables are noted as inputs.
 color::Colorimeter LoadColorimeter(const std::string& illuminant, int observer_deg);
 
 // Comma-separated compositions ("0.5,75wt%,18k") as atomic fractions of element a.
@@ -46,7 +48,8 @@ ProgressCallback ProgressPrinter(bool quiet);
 // Every method with its summary, for --help.
 std::string MethodsHelp();
 
-// Writes a file atomically (output.h: never over an input or a special file) and says so
+// Writes a file atomically (output.h, with the program's guard: never over an input or a
+// special file, its temporary removed on a signal) and says so
 // on stderr unless quiet. WriteOutputs writes several as a set: all or none replaced.
 void WriteOutput(const std::string& path, const std::string& contents, bool quiet);
 void WriteOutputs(const std::vector<OutputFile>& files, bool quiet);

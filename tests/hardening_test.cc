@@ -434,6 +434,25 @@ TEST(Messages, AModelWithAStringFinalCostNamesTheField) {
                  {"m.json", "final_cost"});
 }
 
+// A file name that is not UTF-8 (byte 0xff, from a Latin-1 folder) reaches JSON output
+// with U+FFFD in its place, instead of nlohmann's "invalid UTF-8 byte" naming nothing.
+TEST(Messages, AFileNameThatIsNotUtf8IsReplacedInJson) {
+  const std::string dir = MakeTempDir();
+  const std::string nk = dir + "/Au\xff.yml";
+  fs::copy_file(DataDir() + "/pure/Au-Johnson.yml", nk);
+  const RunResult color = RunProgram({"color", "--nk", nk, "--json"});
+  ASSERT_EQ(color.status, 0) << color.err;
+  const nlohmann::json out = nlohmann::json::parse(color.out);
+  EXPECT_EQ(out.at("source").get<std::string>(), dir + "/Au\xef\xbf\xbd.yml");
+  const RunResult exported = RunProgram(
+      {"export", "--nk", nk, "--format", "f82", "--out", dir + "/e\xff", "--json", "--quiet"});
+  ASSERT_EQ(exported.status, 0) << exported.err;
+  const nlohmann::json files = nlohmann::json::parse(exported.out).at("files");
+  ASSERT_EQ(files.size(), 1u);
+  EXPECT_EQ(files[0].get<std::string>(), dir + "/e\xef\xbf\xbd.f82.json");
+  EXPECT_TRUE(fs::exists(dir + "/e\xff.f82.json"));
+}
+
 // ---- Round two: the classes still open after the first pass.
 
 std::string BadInput(const std::string& name) { return TestsDir() + "/bad-inputs/" + name; }

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/stat.h>
+#include <sys/statvfs.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -461,6 +462,37 @@ double SecondsOf(const std::function<void()>& f) {
   const auto start = std::chrono::steady_clock::now();
   f();
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// A sweep past 1 GB is refused before the work, naming its size and --force; forced, it
+// must still fit the size limit for files and the free space of its file system.
+TEST(Resources, AHugeSweepIsRefusedUnlessForced) {
+  const std::string dir = MakeTempDir();
+  const std::string out = dir + "/huge.csv";
+  RunResult r;
+  EXPECT_LT(SecondsOf([&] {
+              r = RunProgram({"sweep", "--data", "Au-Ag", "--steps", "1000000000", "--out", out});
+            }),
+            5.0);
+  ExpectOneError(r, {"--steps 1000000000", "1000000000 rows", "78 GB", "1 GB", "--force"});
+  ExpectOneError(RunProgram({"sweep", "--data", "Au-Ag", "--steps", "20000000", "--format",
+                             "json"}),
+                 {"2.2 GB", "--force"});
+  // Forced past `ulimit -f`: refused before the work, naming the limit.
+  r = RunWithFileLimit(
+      1000, {"sweep", "--data", "Au-Ag", "--steps", "20000000", "--force", "--out", out});
+  ExpectOneError(r, {out, "1.6 GB", "ulimit -f"});
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 0);
+  // Forced past the free space: only tried where the file system has less than the
+  // sweep's 111 GB of JSON (otherwise the sweep would start writing them).
+  struct statvfs fs_info;
+  ASSERT_EQ(statvfs(dir.c_str(), &fs_info), 0);
+  const double free_bytes = static_cast<double>(fs_info.f_bavail) * fs_info.f_frsize;
+  if (free_bytes > 100e9) GTEST_SKIP() << "over 100 GB free: the free-space check is not tried";
+  ExpectOneError(RunProgram({"sweep", "--data", "Au-Ag", "--steps", "1000000000", "--format",
+                             "json", "--force", "--out", out, "--quiet"}),
+                 {out, "111 GB to write", "free on its file system"});
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 0);
 }
 
 // Every command that reads a model refuses one that cannot be used over its stated range,

@@ -384,7 +384,8 @@ std::string ByteSizeText(unsigned long long bytes) {
     ++unit;
   }
   char text[32];
-  std::snprintf(text, sizeof text, value < 10.0 ? "%.1f %s" : "%.0f %s", value, kUnits[unit]);
+  const bool whole = value >= 10.0 || value == static_cast<double>(static_cast<int>(value));
+  std::snprintf(text, sizeof text, whole ? "%.0f %s" : "%.1f %s", value, kUnits[unit]);
   return text;
 }
 

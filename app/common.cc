@@ -14,6 +14,7 @@
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/io.h"
 #include "alloycolor/core/output.h"
+#include "alloycolor/core/setting.h"
 #include "alloycolor/core/text.h"
 #include "alloycolor/model/registry.h"
 
@@ -276,18 +277,14 @@ void AddColorimetryOptions(CLI::App* cmd, std::string* illuminant, int* observer
 }
 
 CLI::Validator NumberIn(double lo, double hi, bool whole) {
-  const std::string range = "[" + FormatNumber(lo) + ", " + FormatNumber(hi) + "]";
-  const std::string kind = whole ? "a whole number in " : "a finite number in ";
+  return NumberIn(NumberRange{lo, hi, whole});
+}
+
+CLI::Validator NumberIn(const NumberRange& range) {
   return CLI::Validator(
-      [lo, hi, whole, range, kind](std::string& text) -> std::string {
-        double value = 0;
-        if (!ParseFiniteDouble(Trim(text), &value) || !(value >= lo && value <= hi) ||
-            (whole && value != std::floor(value))) {
-          return Quote(MessageLine(text, 40)) + " is not " + kind + range;
-        }
-        return std::string();
-      },
-      (whole ? "INT in " : "NUMBER in ") + range);
+      [range](std::string& text) -> std::string { return NumberProblem(text, range); },
+      (range.whole ? "INT in [" : "NUMBER in [") + FormatNumber(range.lo) + ", " +
+          FormatNumber(range.hi) + "]");
 }
 
 void CheckOutputFolder(const std::string& path, const std::string& option) {

@@ -13,6 +13,7 @@
 #include "alloycolor/core/dataset.h"
 #include "alloycolor/core/output.h"
 #include "alloycolor/core/progress.h"
+#include "alloycolor/core/setting.h"
 #include "alloycolor/core/spectrum.h"
 #include "alloycolor/color/colorimetry.h"
 #include "output_guard.h"
@@ -96,6 +97,8 @@ void AddColorimetryOptions(CLI::App* cmd, std::string* illuminant, int* observer
 // An option check: the value must be a finite number in [lo, hi] ("nan", "-1" refused
 // with a message naming the range). For integer options too: "2.5" and 2^40 are refused.
 CLI::Validator NumberIn(double lo, double hi, bool whole = false);
+// The same for a library's named range (core/setting.h), with its words.
+CLI::Validator NumberIn(const NumberRange& range);
 
 // Refuses an output path whose folder does not exist, before any work is done.
 void CheckOutputFolder(const std::string& path, const std::string& option);

@@ -215,7 +215,7 @@ void WriteFileSetAtomic(const std::vector<OutputFile>& files, OutputGuard* guard
     for (std::size_t j = 0; j < i; ++j) {
       if (std::filesystem::weakly_canonical(files[i].path) ==
           std::filesystem::weakly_canonical(files[j].path)) {
-        Fail("cannot write '" + files[i].path + "' twice in one command");
+        Fail("cannot write '" + files[i].path + "': the same file is given for two outputs");
       }
     }
   }

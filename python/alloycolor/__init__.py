@@ -21,6 +21,7 @@ one-line messages, and an exception raised in one stops the work and propagates.
 
 from __future__ import annotations
 
+import numbers
 import os
 import pathlib
 from typing import Callable, Iterable, Optional, Sequence, Union
@@ -61,6 +62,56 @@ def methods() -> list:
     """The model methods of the registry: [{"name", "summary", "auto_rank" (its place in
     auto's order, -1: not a candidate), "validate_default" (validate runs it by default)}]."""
     return _core.methods()
+
+
+def _real(name: str, value) -> float:
+    """value as a float, when it is a real number (not a bool, complex or string)."""
+    if isinstance(value, (bool, np.bool_)):
+        raise Error("%s: %r is a boolean, not a number" % (name, value))
+    if isinstance(value, (complex, np.complexfloating)):
+        raise Error("%s: %r is complex; give a real number" % (name, value))
+    if not isinstance(value, numbers.Real):
+        raise Error("%s: %r is not a number" % (name, value))
+    return float(value)
+
+
+def _fit_setting(name: str, setting: str, value) -> float:
+    """value checked by the library's range for the fit setting ``setting``; errors name
+    ``name``, the keyword it was given as."""
+    v = _real(name, value)
+    _core._check_fit_setting(setting, v, name)
+    return v
+
+
+def _flag(name: str, value) -> bool:
+    if not isinstance(value, (bool, np.bool_)):
+        raise Error("%s: %r is not True or False" % (name, value))
+    return bool(value)
+
+
+def _text(name: str, value) -> str:
+    if not isinstance(value, str):
+        raise Error("%s: %r is not a string" % (name, value))
+    return value
+
+
+def _holds_bool(value) -> bool:
+    """True for a bool, or a (nested) list or tuple holding one (numpy turns [0.5, False]
+    into floats)."""
+    if isinstance(value, (list, tuple)):
+        return any(_holds_bool(v) for v in value)
+    return isinstance(value, (bool, np.bool_))
+
+
+def _real_array(name: str, value) -> np.ndarray:
+    arr = np.asarray(value)
+    if arr.dtype.kind == "b" or _holds_bool(value):
+        raise Error("%s: booleans are not numbers" % name)
+    if arr.dtype.kind == "c":
+        raise Error("%s: complex values; give real numbers" % name)
+    if arr.dtype.kind not in "iuf":
+        raise Error("%s: %r is not a number or an array of numbers" % (name, value))
+    return np.asarray(arr, dtype=float)
 
 
 def _columns_text(columns) -> str:
@@ -174,6 +225,14 @@ def _broadcast_x(model, x) -> np.ndarray:
     arr = np.asarray(x)
     if arr.dtype.kind in "US":
         return np.vectorize(model.parse_composition, otypes=[float])(arr)
+    if arr.dtype.kind == "b" or _holds_bool(x):
+        raise Error("x: a composition is an atomic fraction (a real number or a string such "
+                    "as \"75wt%\"), not a boolean")
+    if arr.dtype.kind == "c":
+        raise Error("x: a composition is an atomic fraction, a real number, not complex")
+    if arr.dtype.kind not in "iuf":
+        raise Error("x: %r is not a composition (a number in [0, 1] or a string such as "
+                    "\"75wt%%\")" % (x,))
     return np.asarray(arr, dtype=float)
 
 
@@ -279,13 +338,41 @@ def fit(dataset: Union[Dataset, str], method: str = "auto", *, degree: Optional[
     lambda_range_nm: (from, to, step) of the fit grid; covariance: compute the physical
     fit's parameter covariance; progress: called with one-line messages. Every method
     fitted to three compositions or more carries a cross-validated uncertainty."""
+    method = _text("method", method)
+    degree = -1 if degree is None else int(_fit_setting("degree", "degree", degree))
+    smoothing = -1.0 if smoothing is None else _fit_setting("smoothing", "smoothing", smoothing)
+    space = "" if space is None else _text("space", space)
+    terms = _text("terms", terms)
+    covariance = _flag("covariance", covariance)
+    if progress is not None and not callable(progress):
+        raise Error("progress: %r is not callable" % (progress,))
+    lo = hi = step = 0.0
+    if lambda_range_nm is not None:
+        lo, hi, step = _lambda_range(lambda_range_nm)
     if not isinstance(dataset, Dataset):
         dataset = Dataset(dataset)
-    lo, hi, step = (0.0, 0.0, 0.0) if lambda_range_nm is None else map(float, lambda_range_nm)
-    return Model(_core._fit(dataset._core, method, _optional(degree, -1),
-                            float(_optional(smoothing, -1.0)), _optional(space, ""), terms,
-                            lo, hi, step,
-                            bool(covariance), progress))
+    return Model(_core._fit(dataset._core, method, degree, smoothing, space, terms, lo, hi,
+                            step, covariance, progress))
+
+
+# The most nodes a fit grid has (the library's bound, as ``alloycolor fit`` keeps it).
+_MAX_FIT_GRID_NODES = _core._max_fit_grid_nodes
+
+
+def _lambda_range(value) -> tuple:
+    """(from, to, step) in nm, each checked by the library's ranges."""
+    if isinstance(value, (str, bytes)) or np.ndim(value) != 1 or len(value) != 3:
+        raise Error("lambda_range_nm: give (from, to, step) in nm, three numbers, not %r"
+                    % (value,))
+    lo = _fit_setting("lambda_range_nm[0] (from)", "lambda_from_nm", value[0])
+    hi = _fit_setting("lambda_range_nm[1] (to)", "lambda_to_nm", value[1])
+    step = _fit_setting("lambda_range_nm[2] (step)", "lambda_step_nm", value[2])
+    if not lo < hi:
+        raise Error("lambda_range_nm: from %g nm is not below to %g nm" % (lo, hi))
+    if (hi - lo) / step > _MAX_FIT_GRID_NODES:
+        raise Error("lambda_range_nm: a step of %g nm over %g-%g nm makes over %d grid nodes; "
+                    "give a larger step" % (step, lo, hi, _MAX_FIT_GRID_NODES))
+    return lo, hi, step
 
 
 def load_model(path: Union[str, os.PathLike]) -> Model:
@@ -326,7 +413,7 @@ def color(source, x=None, angle_deg=0.0, illuminant="D65", observer=2, sigma=Fal
     obs = np.asarray(observer)
     if obs.dtype.kind not in "iuf" or np.any(obs != np.round(obs)):
         raise Error("observer: %r is not 2 or 10" % (observer,))
-    xs, ang, ill_b, obs_b = np.broadcast_arrays(xs, np.asarray(angle_deg, dtype=float), ill, obs)
+    xs, ang, ill_b, obs_b = np.broadcast_arrays(xs, _real_array("angle_deg", angle_deg), ill, obs)
     shape = xs.shape
     n = xs.size
     flat_x, flat_a = xs.ravel(), ang.ravel()

@@ -435,6 +435,26 @@ TEST(Messages, AModelWithAStringFinalCostNamesTheField) {
                  {"m.json", "final_cost"});
 }
 
+// A full device (ENOSPC) on standard output: one line naming standard output and the
+// cause, status 2, for a command that prints a table and for a sweep.
+TEST(Resources, AFullDiskIsOneErrorNamingTheOutput) {
+  const std::string dir = MakeTempDir();
+  for (const std::string& args :
+       {std::string("color --data Au-Ag --method paper --x 0.5,0.6"),
+        std::string("sweep --data Au-Ag --method paper --steps 10"),
+        std::string("predict --data Au-Ag --method paper --x 0.5")}) {
+    SCOPED_TRACE(args);
+    const std::string command = "exec '" + std::string(ALLOYCOLOR_BINARY) + "' " + args +
+                                " >/dev/full 2>'" + dir + "/err'";
+    const int status = std::system(("bash -c \"" + command + "\"").c_str());
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 2);
+    const std::string err = ReadBytes(dir + "/err");
+    EXPECT_EQ(CountLines(err), 1) << err;
+    EXPECT_NE(err.find("cannot write standard output: no space left"), std::string::npos) << err;
+  }
+}
+
 // A file name that is not UTF-8 (byte 0xff, from a Latin-1 folder) reaches JSON output
 // with U+FFFD in its place, instead of nlohmann's "invalid UTF-8 byte" naming nothing.
 TEST(Messages, AFileNameThatIsNotUtf8IsReplacedInJson) {

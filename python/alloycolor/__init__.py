@@ -83,6 +83,35 @@ def _fit_setting(name: str, setting: str, value) -> float:
     return v
 
 
+def _whole(name: str, value, lo: float, hi: float) -> int:
+    """value as an int, when it is a whole number in [lo, hi] (the library's check)."""
+    v = _real(name, value)
+    _core._check_number(name, v, lo, hi, True)
+    return int(v)
+
+
+def _observer(name: str, value) -> int:
+    v = _whole(name, value, 2, 10)
+    if v not in (2, 10):
+        raise Error("%s: %r is not 2 or 10" % (name, value))
+    return v
+
+
+def _path(name: str, value) -> str:
+    if not isinstance(value, (str, os.PathLike)):
+        raise Error("%s: %r is not a file path" % (name, value))
+    path = os.fspath(value)
+    if not isinstance(path, str):
+        raise Error("%s: give the path as a str, not %r" % (name, value))
+    return path
+
+
+def _callable(name: str, value):
+    if value is not None and not callable(value):
+        raise Error("%s: %r is not callable" % (name, value))
+    return value
+
+
 def _flag(name: str, value) -> bool:
     if not isinstance(value, (bool, np.bool_)):
         raise Error("%s: %r is not True or False" % (name, value))
@@ -155,7 +184,7 @@ def read_nk(path: Union[str, os.PathLike], columns=None) -> Spectrum:
     TSV, whitespace; wavelength, energy or wavenumber; n, k or eps1, eps2). ``columns``
     chooses one n,k pair of a multi-sample file: ``"n6,k6"``, ``("n6", "k6")`` or 1-based
     ``(2, 3)``. Raises Error naming the file and line on bad input."""
-    core, warnings = _core._read_nk(os.fspath(path), _columns_text(columns))
+    core, warnings = _core._read_nk(_path("path", path), _columns_text(columns))
     return Spectrum(core, warnings)
 
 
@@ -165,7 +194,7 @@ class Dataset:
 
     def __init__(self, path_or_name: Union[str, os.PathLike, None] = None, *, _core_set=None):
         if _core_set is None:
-            arg = os.fspath(path_or_name)
+            arg = _path("path_or_name", path_or_name)
             bundled = pathlib.Path(data_root()) / arg
             if not os.path.exists(arg) and arg and not os.path.isabs(arg) and bundled.exists():
                 arg = str(bundled)
@@ -190,7 +219,7 @@ class Dataset:
         return out
 
     def _match(self, x) -> float:
-        value = self._core.parse_composition(x) if isinstance(x, str) else float(x)
+        value = self._core.parse_composition(x) if isinstance(x, str) else _real("x", x)
         known = self._core.sample_x(value)
         if known is not None:
             return known
@@ -260,7 +289,7 @@ class Model:
 
     def _optics(self, x, lambda_nm, index: bool) -> np.ndarray:
         xs = _broadcast_x(self, x)
-        lam = np.asarray(lambda_nm, dtype=float)
+        lam = _real_array("lambda_nm", lambda_nm)
         out = self._core._optics(xs.ravel(), lam.ravel(), index)
         return out.reshape(xs.shape + lam.shape)
 
@@ -280,7 +309,7 @@ class Model:
 
     def save(self, path: Union[str, os.PathLike]) -> None:
         """Writes the versioned JSON model file (atomically: all or nothing)."""
-        self._core.save(os.fspath(path))
+        self._core.save(_path("path", path))
 
     def to_json(self) -> dict:
         """The model file's content as Python objects."""
@@ -292,19 +321,25 @@ class Model:
         """An image of a solid (sphere or ring) of the alloy at x: (size, size, 4) uint8
         sRGBA, or float32 linear sRGB with alpha when ``linear``."""
         xv = float(_broadcast_x(self, x))
-        return self._core._render(xv, shape, int(size), lighting, float(roughness), background,
-                                  illuminant, int(observer), bool(linear))
+        return self._core._render(xv, _text("shape", shape),
+                                  _whole("size", size, 1, _core._max_tile_size),
+                                  _text("lighting", lighting), _real("roughness", roughness),
+                                  _text("background", background),
+                                  _text("illuminant", illuminant), _observer("observer", observer),
+                                  _flag("linear", linear))
 
     def spectra(self, x, material: Optional[str] = None) -> dict:
         """n, k on the export grid (360-830 nm, 5 nm): {"lambda_nm", "n", "k", "notes"}."""
         xv = float(_broadcast_x(self, x))
-        return self._core._spectra(xv, material or self._material(xv))
+        return self._core._spectra(xv, self._material(xv) if material is None
+                                   else _text("material", material))
 
     def write_spd(self, x, eta_path, k_path, material: Optional[str] = None) -> None:
         """Writes the eta and k .spd files (wavelength_nm value) pbrt-v4 and Mitsuba 3 read."""
         xv = float(_broadcast_x(self, x))
-        self._core._write_spd(xv, material or self._material(xv), os.fspath(eta_path),
-                              os.fspath(k_path))
+        self._core._write_spd(xv, self._material(xv) if material is None
+                              else _text("material", material), _path("eta_path", eta_path),
+                              _path("k_path", k_path))
 
     def _material(self, x: float) -> str:
         return "%s at x = %.6g (%s model)" % (self.system, x, self.method)
@@ -377,7 +412,7 @@ def _lambda_range(value) -> tuple:
 
 def load_model(path: Union[str, os.PathLike]) -> Model:
     """Reads a model file written by ``alloycolor fit --out`` or :meth:`Model.save`."""
-    return Model(_core._load_model(os.fspath(path)))
+    return Model(_core._load_model(_path("path", path)))
 
 
 _COLOR_KEYS = ("xyz", "lab", "linear_srgb", "srgb8", "paper_rgb")
@@ -409,9 +444,14 @@ def color(source, x=None, angle_deg=0.0, illuminant="D65", observer=2, sigma=Fal
         if x is not None:
             raise Error("color: a measured spectrum has one composition; x must be None")
         xs = np.zeros(())
+    sigma = _flag("sigma", sigma)
+    exact = _flag("exact", exact)
     ill = np.asarray(illuminant, dtype=object)
+    for name in ill.ravel():
+        _text("illuminant", name)
     obs = np.asarray(observer)
-    if obs.dtype.kind not in "iuf" or np.any(obs != np.round(obs)):
+    if (obs.dtype.kind not in "iuf" or _holds_bool(observer)
+            or not np.all(np.isin(obs, (2, 10)))):
         raise Error("observer: %r is not 2 or 10" % (observer,))
     xs, ang, ill_b, obs_b = np.broadcast_arrays(xs, _real_array("angle_deg", angle_deg), ill, obs)
     shape = xs.shape
@@ -435,7 +475,7 @@ def color(source, x=None, angle_deg=0.0, illuminant="D65", observer=2, sigma=Fal
         if is_model:
             r = source._core._color(np.ascontiguousarray(flat_x[idx]),
                                     np.ascontiguousarray(flat_a[idx]), ill_name, obs_deg,
-                                    bool(sigma), bool(exact))
+                                    sigma, exact)
         else:
             r = source._core._color(np.ascontiguousarray(flat_a[idx]), ill_name, obs_deg)
         for key in _COLOR_KEYS:
@@ -483,7 +523,12 @@ def validate(dataset: Union[Dataset, str], methods: Union[None, str, Sequence[st
         methods = [m["name"] for m in _core.methods()] + ["auto"]
     elif isinstance(methods, str):
         methods = [m.strip() for m in methods.split(",")]
+    for m in methods:
+        _text("methods", m)
     return _core._validate(dataset._core, list(methods), splits, mode,
-                           [float(a) for a in np.atleast_1d(angles_deg)], illuminant,
-                           int(observer), "" if html is None else os.fspath(html),
-                           "" if json is None else os.fspath(json), progress)
+                           [float(a) for a in np.atleast_1d(_real_array("angles_deg",
+                                                                        angles_deg))],
+                           _text("illuminant", illuminant), _observer("observer", observer),
+                           "" if html is None else _path("html", html),
+                           "" if json is None else _path("json", json),
+                           _callable("progress", progress))

@@ -309,6 +309,10 @@ PYBIND11_MODULE(_alloycolor, m) {
   });
   m.def("_python_words", &PythonWords);
   m.attr("_max_fit_grid_nodes") = kMaxFitGridNodes;
+  m.attr("_max_tile_size") = render::kMaxTileSize;
+  // The library's check of a number against a range, named as the caller gave it.
+  m.def("_check_number", [](const std::string& name, double value, double lo, double hi,
+                            bool whole) { CheckNumber(name, value, NumberRange{lo, hi, whole}); });
 
   // The library's checks of the fit's numeric settings, by their names ("degree", ...).
   // `label` is the keyword the value was given as ("degree", "lambda_range_nm[2] (step)").

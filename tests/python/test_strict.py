@@ -107,3 +107,30 @@ def test_a_columns_message_names_the_keyword(tmp_path):
     path.write_text("lambda_nm,n1,k1,n2,k2\n500,1,2,1,2\n600,1,2,1,2\n")
     message = error_of(lambda: ac.read_nk(path))
     assert "columns=" in message, message
+
+
+@pytest.mark.parametrize("call, needle", [
+    (lambda m: m.render(0.5, size=10**12), "size: 1e+12 is not a whole number in [1, 4096]"),
+    (lambda m: m.render(0.5, size=True), "size:"),
+    (lambda m: m.render(0.5, shape=3), "shape:"),
+    (lambda m: m.render(0.5, size=8, linear="no"), "linear:"),
+    (lambda m: m.color(0.5, observer=10**12), "observer:"),
+    (lambda m: m.color(0.5, observer=True), "observer:"),
+    (lambda m: m.color(0.5, sigma="x"), "sigma:"),
+    (lambda m: m.color(0.5, illuminant=3), "illuminant:"),
+    (lambda m: m.nk(0.5, [500 + 1j]), "lambda_nm:"),
+    (lambda m: m.nk(0.5, [True]), "lambda_nm:"),
+    (lambda m: m.save(3), "path:"),
+    (lambda m: m.write_spd(0.5, "a.spd", 3), "k_path:"),
+    (lambda m: m.spectra(0.5, material=3), "material:"),
+    (lambda m: ac.load_model(3), "path:"),
+    (lambda m: ac.Dataset(3), "path_or_name:"),
+    (lambda m: ac.Dataset("Au-Ag").without([True]), "x:"),
+    (lambda m: ac.validate("Au-Ag", "paper", angles_deg=[1j]), "angles_deg:"),
+    (lambda m: ac.validate("Au-Ag", "paper", observer=10**12), "observer:"),
+    (lambda m: ac.validate("Au-Ag", "paper", progress=3), "progress:"),
+    (lambda m: ac.fit("Au-Ag", "paper", progress=3), "progress:"),
+])
+def test_every_argument_is_checked(model, call, needle):
+    message = error_of(lambda: call(model))
+    assert needle in message, message

@@ -1,6 +1,7 @@
 // alloycolor validate: refit every method without held-out samples, predict them and write
 // a validation report (report.json and a self-contained report.html); see report.h.
 #include <algorithm>
+#include <cstdarg>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -116,11 +117,29 @@ void PrepareOutput(const std::string& dir) {
   }
 }
 
-void PrintSummary(const nlohmann::json& report) {
+// printf into a string.
+__attribute__((format(printf, 2, 3))) void Appendf(std::string* text, const char* format, ...) {
+  va_list args, again;
+  va_start(args, format);
+  va_copy(again, args);
+  const int n = std::vsnprintf(nullptr, 0, format, args);
+  va_end(args);
+  if (n > 0) {
+    const std::size_t at = text->size();
+    text->resize(at + static_cast<std::size_t>(n) + 1);
+    std::vsnprintf(text->data() + at, static_cast<std::size_t>(n) + 1, format, again);
+    text->resize(at + static_cast<std::size_t>(n));
+  }
+  va_end(again);
+}
+
+// The summary table printed after the report is written.
+std::string SummaryText(const nlohmann::json& report) {
+  std::string text;
   const auto& methods = report["methods"];
-  std::printf("%-18s", "metric (mean)");
-  for (const auto& m : methods) std::printf(" %16s", m.get<std::string>().c_str());
-  std::printf("\n");
+  Appendf(&text, "%-18s", "metric (mean)");
+  for (const auto& m : methods) Appendf(&text, " %16s", m.get<std::string>().c_str());
+  Appendf(&text, "\n");
   // delta_e00 per angle first, then the spectral metrics.
   std::vector<std::string> keys;
   for (const auto& [metric, row] : report["summary"].items()) {
@@ -131,7 +150,7 @@ void PrintSummary(const nlohmann::json& report) {
   }
   for (const std::string& metric : keys) {
     const auto& row = report["summary"][metric];
-    std::printf("%-18s", metric.c_str());
+    Appendf(&text, "%-18s", metric.c_str());
     for (const auto& m : methods) {
       const auto& cell = row[m.get<std::string>()];
       char buf[48];
@@ -141,9 +160,9 @@ void PrintSummary(const nlohmann::json& report) {
         std::snprintf(buf, sizeof buf, "%.4g (%d/%d)", cell["mean"].get<double>(),
                       cell["wins"].get<int>(), cell["count"].get<int>());
       }
-      std::printf(" %16s", buf);
+      Appendf(&text, " %16s", buf);
     }
-    std::printf("\n");
+    Appendf(&text, "\n");
   }
   // How often the observed colour error lay within the method's 1 and 2 sigma.
   const auto& honesty = report["sigma_honesty"];
@@ -155,7 +174,7 @@ void PrintSummary(const nlohmann::json& report) {
   }
   for (const std::string& angle : angles) {
     for (const char* key : {"within_1_sigma", "within_2_sigma"}) {
-      std::printf("%-18s", (std::string(key == std::string("within_1_sigma") ? "in_1sigma_" : "in_2sigma_") + angle).c_str());
+      Appendf(&text, "%-18s", (std::string(key == std::string("within_1_sigma") ? "in_1sigma_" : "in_2sigma_") + angle).c_str());
       for (const auto& m : methods) {
         const std::string name = m.get<std::string>();
         char buf[48];
@@ -165,14 +184,15 @@ void PrintSummary(const nlohmann::json& report) {
           const auto& cell = honesty[name][angle];
           std::snprintf(buf, sizeof buf, "%d/%d", cell[key].get<int>(), cell["count"].get<int>());
         }
-        std::printf(" %16s", buf);
+        Appendf(&text, " %16s", buf);
       }
-      std::printf("\n");
+      Appendf(&text, "\n");
     }
   }
   if (!report["delta_e00_available"].get<bool>()) {
-    std::printf("delta_e00: %s\n", report["metric_ranges"]["delta_e00"].get<std::string>().c_str());
+    Appendf(&text, "delta_e00: %s\n", report["metric_ranges"]["delta_e00"].get<std::string>().c_str());
   }
+  return text;
 }
 
 void Run(const ValidateOptions& o) {
@@ -214,7 +234,7 @@ void Run(const ValidateOptions& o) {
   WriteOutputs({{(fs::path(o.out) / "report.json").string(), json_text},
                 {(fs::path(o.out) / "report.html").string(), html_text}},
                o.quiet);
-  PrintSummary(json);
+  PrintOutput(SummaryText(json));
 }
 
 }  // namespace

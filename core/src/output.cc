@@ -404,6 +404,7 @@ void CheckFileSizeLimit(const std::string& name, unsigned long long offset,
 }
 
 void CheckFreeSpace(const std::string& name, const struct statvfs& fs, unsigned long long bytes) {
+  if (fs.f_blocks == 0) return;  // a pseudo file system that counts no blocks
   const unsigned long long free_bytes =
       static_cast<unsigned long long>(fs.f_bavail) * static_cast<unsigned long long>(fs.f_frsize);
   if (bytes > free_bytes) {

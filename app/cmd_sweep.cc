@@ -151,10 +151,10 @@ void Run(const SweepOptions& o) {
   // The size before the work: refused past the ceiling unless --force, and only where
   // there is room for it.
   const double row_bytes = o.format == "json" ? kJsonRowBytes : kCsvRowBytes;
-  const auto estimate = static_cast<unsigned long long>(static_cast<double>(o.steps) * row_bytes) +
-                        kHeadBytes;
-  const std::string size_text = std::to_string(o.steps) + " rows, about " +
-                                ByteSizeText(estimate) + " of " + o.format;
+  const auto estimate =
+      static_cast<unsigned long long>(static_cast<double>(o.steps) * row_bytes) + kHeadBytes;
+  const std::string size_text =
+      std::to_string(o.steps) + " rows, about " + ByteSizeText(estimate) + " of " + o.format;
   if (estimate > kMaxOutputBytes && !o.force) {
     throw Error("--steps " + std::to_string(o.steps) + ": the sweep would write " + size_text +
                 ", past the " + ByteSizeText(kMaxOutputBytes) +
@@ -291,7 +291,9 @@ void RegisterSweep(CLI::App& app) {
   cmd->add_option("--from", o->from_text,
                   "First composition: 0.25, 25at%, 25wt% or 6k (default: the model's lowest)");
   cmd->add_option("--to", o->to_text, "Last composition (default: the model's highest)");
-  cmd->add_option("--steps", o->steps, "Number of compositions, 1 to 1e9 (a sweep past 1 GB needs --force)")->capture_default_str();
+  cmd->add_option("--steps", o->steps,
+                  "Number of compositions, 1 to 1e9 (a sweep past 1 GB needs --force)")
+      ->capture_default_str();
   cmd->add_option("--angle", o->angle_deg, "Angle of incidence in degrees (0-90)")
       ->capture_default_str();
   cmd->add_option("--illuminant", o->illuminant, "CIE illuminant: A, C, D50, D65, E, F2, F11")

@@ -69,8 +69,7 @@ void OutputGuard::CheckNotInput(const std::string& path, unsigned long long devi
   if (input == inputs_->by_id.end()) return;
   // The input is still that file (not deleted, its inode reused by this one)?
   struct stat again;
-  if (stat(input->second.c_str(), &again) != 0 || again.st_dev != device ||
-      again.st_ino != inode) {
+  if (stat(input->second.c_str(), &again) != 0 || again.st_dev != device || again.st_ino != inode) {
     inputs_->by_id.erase(input);
     return;
   }
@@ -421,8 +420,8 @@ void CheckOutputRoom(const std::string& path, unsigned long long bytes) {
     if (fstat(STDOUT_FILENO, &info) != 0) return;
     if (S_ISREG(info.st_mode)) {
       const off_t offset = lseek(STDOUT_FILENO, 0, SEEK_CUR);
-      CheckFileSizeLimit("standard output", offset > 0 ? static_cast<unsigned long long>(offset) : 0,
-                         bytes);
+      CheckFileSizeLimit("standard output",
+                         offset > 0 ? static_cast<unsigned long long>(offset) : 0, bytes);
       struct statvfs fs;
       if (fstatvfs(STDOUT_FILENO, &fs) == 0) CheckFreeSpace("standard output", fs, bytes);
     } else if (bytes > StreamOutput::kDefaultMemoryBytes) {

@@ -39,9 +39,9 @@ std::string NumberProblem(std::string_view text, const NumberRange& range) {
     return Quote(MessageLine(std::string(text), 40)) + " is not " + RangeText(range);
   }
   const std::string problem = NumberProblem(value, range);
-  return problem.empty() ? problem
-                         : Quote(MessageLine(std::string(text), 40)) + " is not " +
-                               RangeText(range);
+  return problem.empty()
+             ? problem
+             : Quote(MessageLine(std::string(text), 40)) + " is not " + RangeText(range);
 }
 
 void CheckNumber(const std::string& name, double value, const NumberRange& range) {

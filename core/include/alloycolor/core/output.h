@@ -59,8 +59,7 @@ class OutputGuard {
   void NoteInput(const std::string& path);
   // Throws Error when `path` (already lstat'ed as `info`'s device and inode) is a noted
   // input that is still that file.
-  void CheckNotInput(const std::string& path, unsigned long long device,
-                     unsigned long long inode);
+  void CheckNotInput(const std::string& path, unsigned long long device, unsigned long long inode);
 
   // Tracks a temporary being written; returns its slot, or -1 when untracked.
   int TrackTemporary(const std::string& temp) noexcept;
@@ -108,11 +107,11 @@ std::string ByteSizeText(unsigned long long bytes);
 // One output written as a stream, all or nothing, in bounded memory: a file (`path`), or
 // standard output (`path` empty or "-"). The text goes to a temporary — for a file, the
 // temporary beside it that WriteFileSetAtomic would use (checked as CheckOutputPath
-// first, tracked by the guard for its signal handlers); for standard output, memory up to `memory_bytes`, then an
-// unlinked file in $TMPDIR (or /tmp) — and only Commit() makes it appear: the temporary
-// is renamed over the file, or copied to standard output. Destroyed without Commit() (an
-// error half-way), it leaves nothing: no partial file, not a byte on standard output.
-// Errors are alloycolor::Error naming the output ("standard output" for stdout).
+// first, tracked by the guard for its signal handlers); for standard output, memory up to
+// `memory_bytes`, then an unlinked file in $TMPDIR (or /tmp) — and only Commit() makes it appear:
+// the temporary is renamed over the file, or copied to standard output. Destroyed without Commit()
+// (an error half-way), it leaves nothing: no partial file, not a byte on standard output. Errors
+// are alloycolor::Error naming the output ("standard output" for stdout).
 class StreamOutput {
  public:
   static constexpr std::size_t kDefaultMemoryBytes = std::size_t{64} << 20;
@@ -138,7 +137,7 @@ class StreamOutput {
   std::string temp_;  // the named temporary of a file output
   int fd_ = -1;       // the temporary's descriptor, once there is one
   OutputGuard* guard_;
-  int slot_ = -1;     // the guard's slot for temp_
+  int slot_ = -1;  // the guard's slot for temp_
   std::size_t memory_bytes_;
   std::string memory_;  // standard output: held here until past memory_bytes
   bool committed_ = false;

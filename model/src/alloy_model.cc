@@ -759,6 +759,6 @@ std::unique_ptr<AlloyModel> ReadModelFile(const std::string& path) {
   return ModelFromJson(doc, path);
 }
 
-std::string ModelFileText(const AlloyModel& model) { return model.ToJson().dump(1) + "\n"; }
+std::string ModelFileText(const AlloyModel& model) { return JsonText(model.ToJson(), 1) + "\n"; }
 
 }  // namespace alloycolor

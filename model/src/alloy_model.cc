@@ -263,7 +263,6 @@ std::vector<std::vector<std::complex<double>>> AlloyModel::PermittivityDraws(
   std::vector<std::vector<std::complex<double>>> draws(count, centre);
   for (int d = 0; d < count; ++d) {
     const std::complex<double> z(normal(rng), normal(rng));
-    const double misfit_sign = d % 2 == 0 ? 1.0 : -1.0;
     const double scatter_sign = (d / 2) % 2 == 0 ? 1.0 : -1.0;
     const std::vector<std::complex<double>>* replicate =
         scatter.empty() ? nullptr : &scatter[(d / 4) % scatter.size()];
@@ -273,7 +272,7 @@ std::vector<std::vector<std::complex<double>>> AlloyModel::PermittivityDraws(
               std::complex<double>(normal(precision_rng), normal(precision_rng));
     }
     for (size_t i = 0; i < centre.size(); ++i) {
-      std::complex<double> relative = scale[i] * z + misfit_sign * misfit[i] + floor;
+      std::complex<double> relative = scale[i] * z + misfit[i] + floor;
       if (replicate != nullptr) relative += scatter_sign * (*replicate)[i];
       std::complex<double> v = centre[i] + std::abs(centre[i]) * relative;
       if (v.imag() < 0) v.imag(0.0);  // a draw stays passive

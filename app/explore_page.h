@@ -9,6 +9,9 @@
 // 8 bits. Its CIELAB and CIEDE2000 are the formulas of colorimetry.h written in JavaScript
 // (tests/explore_test.cc checks them against the C++ ones).
 //
+// The page's HTML, CSS and scripts are the files in app/explore/, embedded at build time
+// (cmake/EmbedText.cmake); page.html names where the others and the data go as @KEY@.
+//
 // Binary tables travel as base64 in a JSON block: little-endian float32 for colour,
 // spectra and sigma, int16 normals (x, y; z = sqrt(1 - x^2 - y^2)) and uint8 coverage for
 // the tiles, uint16 environment maps scaled by their largest value.
@@ -52,13 +55,6 @@ struct ExplorePageInputs {
 };
 
 std::string ExplorePageHtml(const ExplorePageInputs& inputs);
-
-// The page's template parts (explore_page_assets.cc).
-extern const char kExploreHtmlHead[];
-extern const char kExploreCss[];
-extern const char kExploreBody[];
-extern const char kExploreColourJs[];
-extern const char kExploreAppJs[];
 
 }  // namespace alloycolor::app
 

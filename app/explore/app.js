@@ -1,11 +1,3 @@
-// The explorer page's application script (see explore_page.h): the sliders, the canvas
-// shading from the precomputed tables, the plots and the address state. Kept as plain text
-// so that it reads as the script it is.
-#include "explore_page.h"
-
-namespace alloycolor::app {
-
-const char kExploreAppJs[] = R"JS(
 "use strict";
 (() => {
 const C = AlloyColour;
@@ -401,6 +393,3 @@ function setup() {
 }
 setup();
 })();
-)JS";
-
-}  // namespace alloycolor::app

@@ -201,6 +201,7 @@ std::string ExplorePageHtml(const ExplorePageInputs& in) {
                                            {"STYLE", explore::kPageCss},
                                            {"DATA", data_text},
                                            {"COLOUR_JS", explore::kColourJs},
+                                           {"INPUT_JS", explore::kInputJs},
                                            {"APP_JS", explore::kAppJs}});
 }
 

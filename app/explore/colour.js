@@ -1,7 +1,8 @@
 "use strict";
 // The colour formulas of colorimetry.h (CIE 15:2004 CIELAB, IEC 61966-2-1 sRGB, CIEDE2000
 // after Sharma, Wu & Dalal 2005), the composition conversion of composition.h and the
-// table interpolation of composition_table.h, in JavaScript. Pure functions, no page state.
+// table interpolation of composition_table.h, in JavaScript. Pure functions, no page state;
+// under Node the module exports AlloyColour (tests/js/colour.test.js).
 const AlloyColour = (() => {
   const LAB_EPSILON = 216 / 24389;  // (6/29)^3
   const LAB_KAPPA = 24389 / 27;     // (29/3)^3
@@ -88,6 +89,27 @@ const AlloyColour = (() => {
     while (s + 1 < segments.length && x > segments[s].hi) s++;
     return segments[s];
   }
+  // XYZ at mu = cos(angle) from a row of XYZ triples on mu = 0, 1/(m-1), ..., 1: linear.
+  function xyzAtMu(row, mu) {
+    const m = row.length / 3, t = Math.min(Math.max(mu, 0), 1) * (m - 1);
+    const i = Math.min(Math.floor(t), m - 2), f = t - i, a = 3 * i;
+    return [row[a] + f * (row[a + 3] - row[a]), row[a + 1] + f * (row[a + 4] - row[a + 1]),
+            row[a + 2] + f * (row[a + 5] - row[a + 2])];
+  }
+  // A value tabulated per composition node and angle (sigma[node * angles.length + a]):
+  // linear in x between nodes and in angle between the angles.
+  function nodeAngleLinear(sigma, segments, anglesDeg, x, angleDeg) {
+    const seg = findSegment(segments, x), step = (seg.hi - seg.lo) / seg.intervals;
+    const u = Math.min(Math.max((x - seg.lo) / step, 0), seg.intervals);
+    const i = Math.min(Math.floor(u), seg.intervals - 1), f = u - i, node = seg.first + i;
+    const na = anglesDeg.length;
+    let a = 0;
+    while (a + 2 < na && angleDeg > anglesDeg[a + 1]) a++;
+    const g = na > 1 ? Math.min(Math.max((angleDeg - anglesDeg[a]) / (anglesDeg[a + 1] - anglesDeg[a]), 0), 1) : 0;
+    const at = (nd) => (na > 1 ? sigma[nd * na + a] * (1 - g) + sigma[nd * na + a + 1] * g : sigma[nd * na]);
+    return at(node) * (1 - f) + at(node + 1) * f;
+  }
   return { labFromXYZ, linearSRGBFromXYZ, srgbEncode, srgb8, hex, deltaE00, weightFromAtomic,
-           atomicFromWeight, segmentWeights, findSegment };
+           atomicFromWeight, segmentWeights, findSegment, xyzAtMu, nodeAngleLinear };
 })();
+if (typeof module !== "undefined") module.exports = AlloyColour;

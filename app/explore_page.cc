@@ -8,9 +8,9 @@
 #include <nlohmann/json.hpp>
 #include <string_view>
 
-#include "alloycolor/core/markup.h"
 #include "alloycolor/color/colorimetry.h"
 #include "alloycolor/core/composition.h"
+#include "alloycolor/core/markup.h"
 #include "explore_assets.h"
 
 namespace alloycolor::app {
@@ -189,12 +189,11 @@ std::string ExplorePageHtml(const ExplorePageInputs& in) {
                      {"samples_note", in.samples_note},
                      {"tiles", {{"sphere", TileJson(in.sphere)}, {"ring", TileJson(in.ring)}}},
                      {"environment", EnvironmentJson(in.environment_maps)}};
-  // Inside <script>, "</" must not appear: JSON allows "<\/" for "</".
-  std::string data_text = data.dump();
-  for (std::size_t at = 0; (at = data_text.find("</", at)) != std::string::npos; at += 3) {
-    data_text.replace(at, 2, "<\\/");
-  }
-  const std::string title = EscapeXml("alloycolor explorer: " + system.Name() + ", " + model.method());
+  // A name that is not valid UTF-8 is shown with U+FFFD rather than refused.
+  const std::string data_text =
+      EscapeJsonForScript(data.dump(-1, ' ', false, json::error_handler_t::replace));
+  const std::string title =
+      EscapeXml("alloycolor explorer: " + system.Name() + ", " + model.method());
   const std::string system_name = EscapeXml(system.Name());
   return FillTemplate(explore::kPageHtml, {{"TITLE", title},
                                            {"SYSTEM", system_name},

@@ -6,7 +6,8 @@
 # and adds that folder to the target's include path.
 #
 # Run as a script (cmake -DOUTPUT=... -DNAMESPACE=... -DFILES=a|b -P EmbedText.cmake) it
-# writes the header; the bytes go in as numbers, so any text is embedded unchanged.
+# writes the header; each byte goes in as a character escape, so any text is embedded
+# unchanged.
 
 if(CMAKE_SCRIPT_MODE_FILE)
   string(REPLACE "|" ";" files "${FILES}")

@@ -5,6 +5,7 @@
 //    raw U+2028 or U+2029), and the JSON block still reads back as the names;
 //  - headless Chromium (skipped without it) builds no element and no event handler from
 //    them, runs the page to the end, and shows the names as text.
+// A folder name that is not UTF-8 still gives a page.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -272,6 +273,18 @@ TEST_F(HostileNames, ExplorerPageFromAModelShowsItsSourcesOnlyAsText) {
                      "&lt;/script&gt;)"),
             std::string::npos);
   EXPECT_NE(dom.find("model &lt;b&gt;.json"), std::string::npos);
+}
+
+// A folder name that is not UTF-8 (a byte 0xFF) is shown with U+FFFD, not refused.
+TEST_F(HostileNames, ExplorerPageTakesAFolderNameThatIsNotUtf8) {
+  const std::string folder = *root_ + "/Au-Ag \xFF";
+  fs::copy(DataDir() + "/Au-Ag", folder);
+  const std::string page = *root_ + "/not-utf8.html";
+  const RunResult r = RunProgram(
+      {"explore", "--data", folder, "--method", "paper", "--size", "64", "--out", page, "--quiet"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json data = nlohmann::json::parse(DataBlock(ReadText(page)));
+  EXPECT_NE(data["source"].get<std::string>().find("Au-Ag \xEF\xBF\xBD"), std::string::npos);
 }
 
 TEST_F(HostileNames, ValidationReportShowsThemOnlyAsText) {

@@ -2,19 +2,14 @@
 // as the spectrum files and material definitions pbrt-v4 and Mitsuba 3 read for conductors,
 // and as RGB conductors, F0 / F82 tint, Gulbrandsen's r / g, MaterialX and glTF materials.
 #include <cstdio>
-#include <filesystem>
 #include <iostream>
-#include <nlohmann/json.hpp>
-#include <set>
 #include <string>
 #include <vector>
 
-#include "alloycolor/color/material_color.h"
 #include "alloycolor/core/error.h"
-#include "alloycolor/core/io.h"
+#include "alloycolor/core/json.h"
+#include "alloycolor/export/export_files.h"
 #include "alloycolor/export/material_files.h"
-#include "alloycolor/export/renderer_materials.h"
-#include "alloycolor/export/spectral_export.h"
 #include "common.h"
 
 namespace alloycolor::app {
@@ -22,16 +17,11 @@ namespace {
 
 struct ExportOptions {
   MaterialSource material;
-  std::string format = "spd";
   std::string out;
-  std::string scene_dir;
-  double roughness = 0.0;
+  exports::ExportSettings settings;
   bool json = false;
   bool quiet = false;
 };
-
-const std::vector<std::string> kFormats = {"spd",       "rgb-conductor", "f82", "gulbrandsen",
-                                           "materialx", "gltf",          "all"};
 
 std::string Triple(const color::RGB& c) {
   char buf[120];
@@ -47,135 +37,32 @@ std::string Loss(const exports::AngularError& e) {
   return buf;
 }
 
-std::string Format(const char* format, double value) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, format, value);
-  return buf;
-}
-
-// A Mitsuba object id from a description: letters, digits, '-', '_' and '.'.
-std::string Identifier(const std::string& text) {
-  std::string id = "alloycolor_";
-  for (char c : text) {
-    const bool keep = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
-                      c == '-' || c == '.';
-    id += keep ? c : '_';
-  }
-  return id;
-}
-
 void Run(const ExportOptions& o) {
-  bool known = false;
-  for (const std::string& f : kFormats) known = known || f == o.format;
-  if (!known) {
-    throw Error("--format: unknown format '" + o.format +
-                "' (spd, rgb-conductor, f82, gulbrandsen, materialx, gltf, all)");
-  }
+  exports::CheckExportFormat(o.settings.format, "--format");
   if (o.out.empty()) throw Error("--out: give a file name prefix");
-  if (!(o.roughness >= 0.0 && o.roughness <= 1.0)) {
-    throw Error("--roughness: give a number in [0, 1]");
-  }
+  exports::CheckExportRoughness(o.settings.roughness, "--roughness");
   CheckOutputFolder(o.out, "--out");
-  if (!o.scene_dir.empty() && !std::filesystem::is_directory(o.scene_dir)) {
-    throw Error("--scene-dir: no folder " + o.scene_dir);
-  }
+  exports::CheckExportSceneDir(o.settings.scene_dir, "--scene-dir");
   const color::Colorimeter d65 = LoadColorimeter("D65", 2);
-  exports::ConductorSpectra spectra;
-  std::vector<std::complex<double>> index;  // on d65's grid: the spectral truth
-  std::string id;
+  exports::ExportMaterial material;
   if (o.material.measured()) {
-    const NkSpectrum nk = o.material.LoadMeasured(o.quiet);
-    spectra = exports::MeasuredSpectra(nk, "measured n, k from " + o.material.nk_file);
-    index = color::IndexOnGrid(d65, nk);
-    std::string stem = o.material.nk_file.substr(o.material.nk_file.find_last_of('/') + 1);
-    id = Identifier(stem.substr(0, stem.find_last_of('.')));
+    material = exports::MeasuredExportMaterial(d65, o.material.LoadMeasured(o.quiet));
   } else {
     const auto model = o.material.LoadModel(o.quiet);
-    const double x = o.material.Compositions(*model, true)[0];
-    const AlloySystem& system = model->system();
-    const std::string material =
-        system.Name() + " at x = " + Format("%.6g", x) + " (atomic fraction of " + system.a.symbol +
-        "; " + Format("%.4g", 100.0 * WeightFromAtomicFraction(x, system)) + " wt% " +
-        system.a.symbol + "), " + model->method() + " model " +
-        (o.material.source.model_path.empty() ? "built from data " + o.material.source.data_dir
-                                     : "from " + o.material.source.model_path);
-    spectra = exports::ModelSpectra(*model, x, material);
-    index = color::IndexOnGrid(d65, *model, x);
-    id = Identifier(system.Name() + "_x" + Format("%.6g", x));
+    const ModelSource& source = o.material.source;
+    material = exports::AlloyExportMaterial(d65, *model, o.material.Compositions(*model, true)[0],
+                                            source.model_path.empty()
+                                                ? "built from data " + source.data_dir
+                                                : "from " + source.model_path);
   }
-  const std::vector<std::string> header = {std::string("written by alloycolor ") +
-                                           ALLOYCOLOR_VERSION};
-  const bool all = o.format == "all";
   // Everything is formatted before the first file is written.
-  std::vector<std::pair<std::string, std::string>> files;
-  if (all || o.format == "spd") {
-    const std::string eta_file = o.out + ".eta.spd";
-    const std::string k_file = o.out + ".k.spd";
-    const std::string eta_name = exports::SpectrumFileReference(eta_file, o.scene_dir);
-    const std::string k_name = exports::SpectrumFileReference(k_file, o.scene_dir);
-    const std::string names_note =
-        o.scene_dir.empty()
-            ? "spectrum file names are relative to this file's folder (the files sit side by "
-              "side): load this file, or a scene in this folder"
-            : "spectrum file names are relative to the scene folder " + o.scene_dir +
-                  " (--scene-dir): load a scene file from that folder";
-    files.emplace_back(eta_file, exports::SpdText(spectra, true, header));
-    files.emplace_back(k_file, exports::SpdText(spectra, false, header));
-    files.emplace_back(o.out + ".pbrt",
-                       exports::PbrtMaterialText(spectra, eta_name, k_name, names_note, header));
-    files.emplace_back(o.out + ".xml",
-                       exports::MitsubaBsdfXml(spectra, id, eta_name, k_name, names_note, header));
-  }
-  const exports::RendererMaterials m = exports::FitRendererMaterials(d65, index, spectra.material);
-  const nlohmann::json summary = exports::RendererMaterialsJson(m, spectra.material);
-  const std::string generator = std::string("alloycolor ") + ALLOYCOLOR_VERSION;
-  if (all || o.format == "rgb-conductor") {
-    files.emplace_back(o.out + ".rgb.xml",
-                       exports::MitsubaRgbConductorXml(m, spectra.material, id, header));
-    files.emplace_back(o.out + ".blender.py",
-                       exports::BlenderMetallicScript(m, spectra.material, id, header));
-  }
-  if (all || o.format == "f82") {
-    nlohmann::json f82 = {
-        {"material", spectra.material},
-        {"colour_space", exports::kColorSpaceNote},
-        {"f82_tint", summary["f82_tint"]},
-        {"openpbr",
-         {{"base_metalness", 1.0},
-          {"base_color", summary["f82_tint"]["f0"]},
-          {"specular_color", summary["f82_tint"]["tint"]}}},
-        {"blender_metallic_f82",
-         {{"Base Color", summary["f82_tint"]["f0"]}, {"Edge Tint", summary["f82_tint"]["tint"]}}},
-        {"generator", generator}};
-    files.emplace_back(o.out + ".f82.json", f82.dump(2) + "\n");
-  }
-  if (all || o.format == "gulbrandsen") {
-    const nlohmann::json& g = summary["gulbrandsen"];
-    nlohmann::json out = {
-        {"material", spectra.material},
-        {"colour_space", exports::kColorSpaceNote},
-        {"gulbrandsen", g},
-        {"standard_surface",
-         {{"metalness", 1.0}, {"base_color", g["r"]}, {"specular_color", g["g"]}}},
-        {"materialx_artistic_ior", {{"reflectivity", g["r"]}, {"edge_color", g["g"]}}},
-        {"generator", generator}};
-    files.emplace_back(o.out + ".gulbrandsen.json", out.dump(2) + "\n");
-  }
-  if (all || o.format == "materialx") {
-    files.emplace_back(o.out + ".mtlx",
-                       exports::MaterialXDocument(m, spectra.material, id, o.roughness, header));
-  }
-  if (all || o.format == "gltf") {
-    files.emplace_back(o.out + ".gltf",
-                       exports::GltfMaterial(m, spectra.material, id, o.roughness, generator));
-  }
+  const exports::ExportFiles e = exports::BuildExport(d65, material, o.out, o.settings);
   if (!o.quiet) {
-    for (const std::string& note : spectra.notes) Warn(note);
+    for (const std::string& note : material.spectra.notes) Warn(note);
   }
-  std::vector<OutputFile> outputs;
-  for (const auto& [path, text] : files) outputs.push_back({path, text});
-  WriteOutputs(outputs, o.quiet);
-  if (!o.quiet && o.format != "spd") {
+  WriteOutputs(e.files, o.quiet);
+  if (!o.quiet && o.settings.format != "spd") {
+    const exports::RendererMaterials& m = e.materials;
     const auto& c = m.rgb_conductor;
     std::cerr << "alloycolor: colours in " << exports::kColorSpaceNote << "\n";
     std::cerr << "alloycolor: rgb-conductor eta " << Triple(c.eta) << " k " << Triple(c.k) << "; "
@@ -186,14 +73,7 @@ void Run(const ExportOptions& o) {
               << Triple(m.gulbrandsen.g) << "; " << Loss(m.gulbrandsen.error) << "\n";
     std::cerr << "alloycolor: gltf (Schlick from F0) " << Loss(m.f82.schlick_error) << "\n";
   }
-  if (o.json) {
-    nlohmann::json out = summary;
-    out["format"] = o.format;
-    nlohmann::json written = nlohmann::json::array();
-    for (const auto& file : files) written.push_back(file.first);
-    out["files"] = written;
-    std::cout << out.dump(2) << "\n";
-  }
+  if (o.json) PrintOutput(JsonText(e.summary, 2) + "\n");
 }
 
 }  // namespace
@@ -215,7 +95,7 @@ void RegisterExport(CLI::App& app) {
       "approximation's largest CIEDE2000 difference from the spectral colour over 0-85 "
       "degrees is printed on stderr (and with --json on stdout).");
   o->material.AddOptions(cmd, "Composition of the system's first element: 0.75, 75at%, 75wt%, 18k");
-  cmd->add_option("--format", o->format,
+  cmd->add_option("--format", o->settings.format,
                   "spd, rgb-conductor, f82, gulbrandsen, materialx, gltf or all")
       ->capture_default_str();
   cmd->add_option("--out", o->out,
@@ -223,12 +103,12 @@ void RegisterExport(CLI::App& app) {
                   "PREFIX.rgb.xml, PREFIX.blender.py, PREFIX.f82.json, PREFIX.gulbrandsen.json, "
                   "PREFIX.mtlx, PREFIX.gltf")
       ->required();
-  cmd->add_option("--scene-dir", o->scene_dir,
+  cmd->add_option("--scene-dir", o->settings.scene_dir,
                   "spd: write the .spd names relative to this folder, where the scene file that "
                   "includes the material lives (pbrt-v4 and Mitsuba 3 resolve names against the "
                   "main scene file's folder); default: the names alone, beside the material "
                   "files");
-  cmd->add_option("--roughness", o->roughness,
+  cmd->add_option("--roughness", o->settings.roughness,
                   "materialx, gltf: the material's roughness in [0, 1] (0: polished)")
       ->capture_default_str();
   cmd->add_flag("--json", o->json, "Every fitted number and error as JSON on stdout");

@@ -18,12 +18,6 @@
 namespace alloycolor::app {
 namespace {
 
-// Angles at which the table is checked against direct spectral evaluation.
-constexpr int kTableCheckSamples = 500;
-constexpr int kRoughTableCheckSamples = 24;
-constexpr double kTableErrorLimit = 1e-4;
-constexpr int kMaxTableSize = 65537;
-
 struct RenderCommandOptions {
   MaterialSource material;
   std::string shape = "sphere";
@@ -63,12 +57,9 @@ render::RenderOptions CheckedOptions(const RenderCommandOptions& o) {
   } catch (const Error& e) {
     throw Error(std::string("--light: ") + e.what());
   }
-  const std::string background =
-      o.background.empty()
-          ? (options.lighting == render::Lighting::kUniform ? "transparent" : "backdrop")
-          : o.background;
   try {
-    options.background = render::BackgroundFromName(background);
+    options.background = o.background.empty() ? render::DefaultBackground(options.lighting)
+                                              : render::BackgroundFromName(o.background);
   } catch (const Error& e) {
     throw Error(std::string("--background: ") + e.what());
   }
@@ -105,14 +96,24 @@ std::vector<Material> LoadMaterials(const RenderCommandOptions& o,
   }
   const auto model = o.material.LoadModel(o.quiet);
   for (double x : o.material.Compositions(*model, false)) {
-    materials.push_back({model->system().Name() + " x=" + Format("%.4g", x),
-                         color::IndexOnGrid(colorimeter, *model, x)});
+    materials.push_back(
+        {render::AlloyLabel(*model, x), color::IndexOnGrid(colorimeter, *model, x)});
   }
   *description = model->system().Name() + ", " + model->method() + " model" +
                  (o.material.source.model_path.empty() ? " from data " + o.material.source.data_dir
                                               : " from " + o.material.source.model_path) +
                  "; x = atomic fraction of " + model->system().a.symbol + ": " + o.material.x_text;
   return materials;
+}
+
+// The library's accuracy guard; a refusal names the program's way out.
+render::CheckedTable TableOrRefusal(const render::DirectReflection& direct,
+                                    const std::string& label) {
+  try {
+    return render::GuardedTable(direct, label);
+  } catch (const Error& e) {
+    throw Error(std::string(e.what()) + " (--direct)");
+  }
 }
 
 double Milliseconds(std::chrono::steady_clock::time_point start) {
@@ -147,28 +148,15 @@ void Run(const RenderCommandOptions& o) {
       tile = renderer.Render(direct);
       shading_ms += Milliseconds(shade_start);
     } else {
-      // A finer table where the default one misses the limit (none of the bundled metals).
-      const int samples = options.roughness > 0.0 ? kRoughTableCheckSamples : kTableCheckSamples;
-      int size = render::kReflectionTableSize;
-      render::ReflectionTable table(direct, size);
-      double error = render::ReflectionTableError(table, direct, samples);
-      while (error > kTableErrorLimit && size < kMaxTableSize) {
-        size = 4 * (size - 1) + 1;
-        table = render::ReflectionTable(direct, size);
-        error = render::ReflectionTableError(table, direct, samples);
-      }
-      if (error > kTableErrorLimit) {
-        throw Error(materials[m].label + ": the XYZ table differs from direct spectral " +
-                    "evaluation by " + Format("%.3g", error) + " (relative), above the limit " +
-                    Format("%g", kTableErrorLimit) + "; render it with --direct");
-      }
+      const render::CheckedTable checked = TableOrRefusal(direct, materials[m].label);
       if (!o.quiet) {
-        std::cerr << "alloycolor: " << materials[m].label << ": XYZ table of " << table.size()
+        std::cerr << "alloycolor: " << materials[m].label << ": XYZ table of "
+                  << checked.table.size()
                   << " angles, largest relative error against direct spectral evaluation "
-                  << Format("%.2g", error) << "\n";
+                  << Format("%.2g", checked.error) << "\n";
       }
       const auto shade_start = std::chrono::steady_clock::now();
-      tile = renderer.Render(table);
+      tile = renderer.Render(checked.table);
       shading_ms += Milliseconds(shade_start);
     }
     render::Paste(tile, options.size * static_cast<int>(m), 0, &sheet);

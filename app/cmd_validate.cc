@@ -1,6 +1,7 @@
 // alloycolor validate: refit every method without held-out samples, predict them and write
 // a validation report (report.json and a self-contained report.html); see report.h.
 #include <algorithm>
+#include <cstdarg>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -9,6 +10,7 @@
 #include <sstream>
 
 #include "alloycolor/core/error.h"
+#include "alloycolor/core/json.h"
 #include "alloycolor/core/io.h"
 #include "alloycolor/core/parallel.h"
 #include "common.h"
@@ -51,33 +53,14 @@ std::string Format(double x) {
   return buf;
 }
 
-// The held-out compositions of --holdout as atomic fractions of interior samples.
-std::vector<double> ParseHoldouts(const std::string& text, const Dataset& dataset) {
-  std::vector<double> xs;
-  for (const Sample* match : SamplesAt(text, dataset, "--holdout")) {
-    if (match == &dataset.samples.front() || match == &dataset.samples.back()) {
-      throw Error("--holdout: " + Format(match->x_given) + " is an end sample (" + match->file +
-                  "); every method would have to extrapolate to predict it, so it is kept "
-                  "for training: hold out interior samples only");
-    }
-    xs.push_back(match->x_atomic);
-  }
-  return xs;
-}
-
-std::vector<std::vector<double>> Splits(const ValidateOptions& o, const Dataset& dataset) {
+std::vector<validate::SampleSplit> Splits(const ValidateOptions& o, const Dataset& dataset) {
   if (o.loo && !o.holdout_text.empty()) throw Error("give --holdout or --loo, not both");
-  if (dataset.samples.size() < 3) {
-    throw Error(dataset.manifest_path + " has " + std::to_string(dataset.samples.size()) +
-                " samples; validation needs at least one interior sample besides the two "
-                "ends");
+  if (o.holdout_text.empty()) return validate::LeaveOneOutSplits(dataset);
+  try {
+    return {validate::HoldoutSplit(dataset, SplitList(o.holdout_text))};
+  } catch (const Error& e) {
+    throw Error(std::string("--holdout: ") + e.what());
   }
-  if (!o.holdout_text.empty()) return {ParseHoldouts(o.holdout_text, dataset)};
-  std::vector<std::vector<double>> splits;
-  for (size_t i = 1; i + 1 < dataset.samples.size(); ++i) {
-    splits.push_back({dataset.samples[i].x_atomic});
-  }
-  return splits;
 }
 
 std::vector<std::string> ParseMethods(const std::string& text) {
@@ -108,18 +91,36 @@ void PrepareOutput(const std::string& dir) {
   fs::create_directories(dir, ec);
   if (ec) throw Error("--out: cannot create folder '" + dir + "': " + ec.message());
   const std::string probe = (fs::path(dir) / ".alloycolor-write-check").string();
-  WriteFileAtomic(probe, "");
+  WriteFileAtomic(probe, "", &ProgramGuard());
   fs::remove(probe, ec);
   for (const char* name : {"report.json", "report.html"}) {
     CheckOutputPath((fs::path(dir) / name).string());  // no symlink or device to replace
   }
 }
 
-void PrintSummary(const nlohmann::json& report) {
+// printf into a string.
+__attribute__((format(printf, 2, 3))) void Appendf(std::string* text, const char* format, ...) {
+  va_list args, again;
+  va_start(args, format);
+  va_copy(again, args);
+  const int n = std::vsnprintf(nullptr, 0, format, args);
+  va_end(args);
+  if (n > 0) {
+    const std::size_t at = text->size();
+    text->resize(at + static_cast<std::size_t>(n) + 1);
+    std::vsnprintf(text->data() + at, static_cast<std::size_t>(n) + 1, format, again);
+    text->resize(at + static_cast<std::size_t>(n));
+  }
+  va_end(again);
+}
+
+// The summary table printed after the report is written.
+std::string SummaryText(const nlohmann::json& report) {
+  std::string text;
   const auto& methods = report["methods"];
-  std::printf("%-18s", "metric (mean)");
-  for (const auto& m : methods) std::printf(" %16s", m.get<std::string>().c_str());
-  std::printf("\n");
+  Appendf(&text, "%-18s", "metric (mean)");
+  for (const auto& m : methods) Appendf(&text, " %16s", m.get<std::string>().c_str());
+  Appendf(&text, "\n");
   // delta_e00 per angle first, then the spectral metrics.
   std::vector<std::string> keys;
   for (const auto& [metric, row] : report["summary"].items()) {
@@ -130,7 +131,7 @@ void PrintSummary(const nlohmann::json& report) {
   }
   for (const std::string& metric : keys) {
     const auto& row = report["summary"][metric];
-    std::printf("%-18s", metric.c_str());
+    Appendf(&text, "%-18s", metric.c_str());
     for (const auto& m : methods) {
       const auto& cell = row[m.get<std::string>()];
       char buf[48];
@@ -140,9 +141,9 @@ void PrintSummary(const nlohmann::json& report) {
         std::snprintf(buf, sizeof buf, "%.4g (%d/%d)", cell["mean"].get<double>(),
                       cell["wins"].get<int>(), cell["count"].get<int>());
       }
-      std::printf(" %16s", buf);
+      Appendf(&text, " %16s", buf);
     }
-    std::printf("\n");
+    Appendf(&text, "\n");
   }
   // How often the observed colour error lay within the method's 1 and 2 sigma.
   const auto& honesty = report["sigma_honesty"];
@@ -154,7 +155,7 @@ void PrintSummary(const nlohmann::json& report) {
   }
   for (const std::string& angle : angles) {
     for (const char* key : {"within_1_sigma", "within_2_sigma"}) {
-      std::printf("%-18s", (std::string(key == std::string("within_1_sigma") ? "in_1sigma_" : "in_2sigma_") + angle).c_str());
+      Appendf(&text, "%-18s", (std::string(key == std::string("within_1_sigma") ? "in_1sigma_" : "in_2sigma_") + angle).c_str());
       for (const auto& m : methods) {
         const std::string name = m.get<std::string>();
         char buf[48];
@@ -164,14 +165,15 @@ void PrintSummary(const nlohmann::json& report) {
           const auto& cell = honesty[name][angle];
           std::snprintf(buf, sizeof buf, "%d/%d", cell[key].get<int>(), cell["count"].get<int>());
         }
-        std::printf(" %16s", buf);
+        Appendf(&text, " %16s", buf);
       }
-      std::printf("\n");
+      Appendf(&text, "\n");
     }
   }
   if (!report["delta_e00_available"].get<bool>()) {
-    std::printf("delta_e00: %s\n", report["metric_ranges"]["delta_e00"].get<std::string>().c_str());
+    Appendf(&text, "delta_e00: %s\n", report["metric_ranges"]["delta_e00"].get<std::string>().c_str());
   }
+  return text;
 }
 
 void Run(const ValidateOptions& o) {
@@ -190,7 +192,7 @@ void Run(const ValidateOptions& o) {
     if (!(a >= 0 && a < 90)) throw Error("--angles: " + Format(a) + " lies outside 0-90 degrees");
   }
   options.mode = o.holdout_text.empty() ? "loo" : "holdout";
-  const std::vector<std::vector<double>> splits = Splits(o, dataset);
+  const std::vector<validate::SampleSplit> splits = Splits(o, dataset);
   const color::Colorimeter colorimeter = LoadColorimeter(o.illuminant, o.observer);
   PrepareOutput(o.out);
 
@@ -207,13 +209,13 @@ void Run(const ValidateOptions& o) {
       validate::ComputeValidation(dataset, splits, colorimeter, options, progress);
   // Both files are rendered before either is written, and written as a set.
   const nlohmann::json json = ValidationJson(report);
-  const std::string json_text = json.dump(1) + "\n";
+  const std::string json_text = JsonText(json, 1) + "\n";
   const std::string html_text = ValidationHtml(report);
   namespace fs = std::filesystem;
   WriteOutputs({{(fs::path(o.out) / "report.json").string(), json_text},
                 {(fs::path(o.out) / "report.html").string(), html_text}},
                o.quiet);
-  PrintSummary(json);
+  PrintOutput(SummaryText(json));
 }
 
 }  // namespace
@@ -234,10 +236,12 @@ void RegisterValidate(CLI::App& app) {
                   "Data set: folder with dataset.json, a manifest, or a bundled set's name")
       ->required();
   cmd->add_option("--holdout", o->holdout_text,
-                  "Hold out these interior samples together (comma-separated compositions; "
-                  "the manifest's numbers or 75at%, 75wt%, 18k)");
+                  "Hold out these samples together, comma-separated: a sample's file (that "
+                  "replicate alone) or a composition (every replicate there; the manifest's "
+                  "numbers or 75at%, 75wt%, 18k); not every sample of an end composition");
   cmd->add_flag("--loo", o->loo,
-                "Leave one out: hold out each interior sample in turn (the default)");
+                "Leave one out: hold out each interior composition in turn, with all its "
+                "replicates (the default)");
   cmd->add_option("--methods", o->methods,
                   "Methods to compare, comma-separated, or all (every method and auto, which "
                   "runs its own leave-one-out inside every fold, on the training samples only); "

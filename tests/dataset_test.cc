@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <complex>
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -208,8 +209,12 @@ TEST_F(ManifestTest, ErrorsNameTheManifestAndTheField) {
       {std::string(kHead) + R"("samples": [{"x": 0.5, "file": "./dataset.json"}]})",
        ": samples[0] ('./dataset.json'): the sample file is the manifest itself"},
       {std::string(kHead) +
-           R"("samples": [{"x": 0.5, "file": "a.yml"}, {"x": 0.5, "file": "b.yml"}]})",
-       ": samples 'a.yml' and 'b.yml' have the same composition, x = 0.5"},
+           R"("samples": [{"x": 0.5, "file": "a.yml"}, {"x": 0.500000002, "file": "b.yml"}]})",
+       ": samples 'a.yml' and 'b.yml' have almost the same composition, x = 0.5 and "
+       "0.500000002 (closer than 1e-6)"},
+      {std::string(kHead) +
+           R"("samples": [{"x": 0.5, "file": "a.yml"}, {"x": 0.5, "file": "./a.yml"}]})",
+       ": samples[0] and samples[1] both use './a.yml'"},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.text);
@@ -218,11 +223,65 @@ TEST_F(ManifestTest, ErrorsNameTheManifestAndTheField) {
   }
 }
 
-TEST_F(ManifestTest, SameCompositionAfterWeightConversion) {
+// Replicates: distinct files at one composition are samples of their own, adjacent and in
+// the manifest's order; the helpers see one composition with both.
+TEST_F(ManifestTest, ReplicatesAreAcceptedInTheManifestsOrder) {
+  const std::string rows = "DATA:\n  - type: tabulated nk\n    data: |\n";
+  WriteText(dir_ + "/c.yml", rows + "        0.4 2 4\n        0.5 2 4\n        0.6 2 4\n");
+  const std::string path = Manifest(std::string(kHead) + R"("samples": [
+      {"x": 0.5, "file": "c.yml"}, {"x": 0.2, "file": "b.yml"}, {"x": 0.5, "file": "a.yml"}]})");
+  const Dataset dataset = LoadDataset(path);
+  ASSERT_EQ(dataset.samples.size(), 3u);
+  EXPECT_EQ(dataset.samples[0].file, "b.yml");
+  EXPECT_EQ(dataset.samples[1].file, "c.yml");
+  EXPECT_EQ(dataset.samples[2].file, "a.yml");
+  EXPECT_EQ(DistinctCompositions(dataset), (std::vector<double>{0.2, 0.5}));
+  const std::vector<const Sample*> at = SamplesAtComposition(dataset, 0.5);
+  ASSERT_EQ(at.size(), 2u);
+  EXPECT_EQ(at[0]->file, "c.yml");
+  EXPECT_EQ(at[1]->file, "a.yml");
+  EXPECT_TRUE(SamplesAtComposition(dataset, 0.3).empty());
+  EXPECT_EQ(FindSample(dataset, 0.5), at[0]);
+  EXPECT_EQ(FindSampleByFile(dataset, "a.yml"), at[1]);
+  EXPECT_EQ(FindSampleByFile(dataset, dir_ + "/c.yml"), at[0]);
+  EXPECT_EQ(FindSampleByFile(dataset, "d.yml"), nullptr);
+  EXPECT_EQ(WithoutSamples(dataset, {0.5}).samples.size(), 1u);
+
+  // The mean: eps averaged on the union of wavelengths inside the common range (500-600
+  // nm), back to n, k. a: n = 1, k = 2 (eps = -3 + 4i); c: n = 2, k = 4 (eps = -12 + 16i).
+  const NkSpectrum mean = MeanSpectrum(at);
+  EXPECT_EQ(mean.lambda_nm, (std::vector<double>{500, 600}));
+  EXPECT_THAT(mean.source, HasSubstr("c.yml"));
+  EXPECT_THAT(mean.source, HasSubstr("a.yml"));
+  for (std::size_t i = 0; i < mean.lambda_nm.size(); ++i) {
+    const std::complex<double> nk(mean.n[i], mean.k[i]);
+    const std::complex<double> eps = nk * nk;
+    EXPECT_NEAR(eps.real(), -7.5, 1e-12);
+    EXPECT_NEAR(eps.imag(), 10.0, 1e-12);
+    EXPECT_GE(mean.n[i], 0);
+    EXPECT_GE(mean.k[i], 0);
+  }
+  EXPECT_EQ(MeanSpectrum({at[0]}).n, at[0]->nk.n);
+}
+
+TEST_F(ManifestTest, ReplicatesAfterWeightConversion) {
   const std::string path = Manifest(
       R"({"system": {"a": "Cu", "b": "Zn"}, "composition": "weight_fraction_a", "samples": [
       {"x": 1, "file": "a.yml"}, {"x": 1.0, "file": "b.yml"}]})");
-  EXPECT_THAT(ErrorOf(path), HasSubstr(path + ": samples 'a.yml' and 'b.yml' have the same"));
+  const Dataset dataset = LoadDataset(path);
+  EXPECT_EQ(DistinctCompositions(dataset).size(), 1u);
+  EXPECT_EQ(SamplesAtComposition(dataset, 1.0).size(), 2u);
+}
+
+// The same measurement twice is still refused, at one composition as at two.
+TEST_F(ManifestTest, TheSameFileOrTheSameSpectrumTwiceIsRefused) {
+  std::string path = Manifest(std::string(kHead) +
+                              R"("samples": [{"x": 0.5, "file": "a.yml"}, {"x": 0.5, "file": "a.yml"}]})");
+  EXPECT_THAT(ErrorOf(path), HasSubstr("both use 'a.yml'"));
+  fs::copy_file(dir_ + "/a.yml", dir_ + "/copy.yml");
+  path = Manifest(std::string(kHead) +
+                  R"("samples": [{"x": 0.5, "file": "a.yml"}, {"x": 0.5, "file": "copy.yml"}]})");
+  EXPECT_THAT(ErrorOf(path), HasSubstr("hold the same n, k at every wavelength"));
 }
 
 TEST_F(ManifestTest, SampleErrorsNameTheSampleFile) {

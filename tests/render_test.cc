@@ -239,6 +239,44 @@ TEST(ShadingTest, RoughTableAgreesWithDirectLobeIntegral) {
   }
 }
 
+TEST(ShadingTest, GuardedTableKeepsTheDefaultSizeForMetals) {
+  const Colorimeter colorimeter = D65();
+  const auto index = IndexOnGrid(colorimeter, ReadNkFile(GoldFile()));
+  for (double alpha : {0.0, 0.3}) {
+    const DirectReflection direct(colorimeter, index, alpha);
+    const CheckedTable checked = GuardedTable(direct, "gold");
+    EXPECT_EQ(checked.table.size(), kReflectionTableSize) << alpha;
+    EXPECT_LE(checked.error, kTableErrorLimit) << alpha;
+    EXPECT_EQ(checked.error,
+              ReflectionTableError(checked.table, direct,
+                                   alpha > 0 ? kRoughTableCheckSamples : kTableCheckSamples));
+  }
+}
+
+// A dielectric with n just above 1: R(mu) rises from about (n - 1)^2 / (4 mu^4) to 1 at
+// grazing incidence, steeper the closer n is to 1.
+std::vector<std::complex<double>> NearlyVacuum(const Colorimeter& colorimeter, double n) {
+  return std::vector<std::complex<double>>(colorimeter.lambda_nm().size(), {n, 0.0});
+}
+
+TEST(ShadingTest, GuardedTableRefinesASteepMaterialOrRefusesIt) {
+  const Colorimeter colorimeter = D65();
+  const DirectReflection steep(colorimeter, NearlyVacuum(colorimeter, 1.001), 0.0);
+  EXPECT_GT(ReflectionTableError(ReflectionTable(steep), steep, kTableCheckSamples),
+            kTableErrorLimit);
+  const CheckedTable refined = GuardedTable(steep, "steep");
+  EXPECT_EQ(refined.table.size(), 4 * (kReflectionTableSize - 1) + 1);
+  EXPECT_LE(refined.error, kTableErrorLimit);
+
+  const DirectReflection steepest(colorimeter, NearlyVacuum(colorimeter, 1.00000001), 0.0);
+  try {
+    GuardedTable(steepest, "steepest");
+    ADD_FAILURE() << "no table of up to " << kMaxReflectionTableSize << " angles should do";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("steepest: the XYZ table differs", 0), 0u) << e.what();
+  }
+}
+
 // Directional albedo of a GGX surface with R = 1 by brute-force quadrature over the
 // outgoing hemisphere: int D(h) G2(v, l) / (4 mu) dl, Smith height-correlated G2.
 double BruteForceGgxAlbedo(double alpha, double mu) {
@@ -611,6 +649,25 @@ TEST(RenderTest, BadInputIsRefusedWithOneLineAndNoFile) {
     ++files;
   }
   EXPECT_EQ(files, 0);
+  fs::remove_all(dir);
+}
+
+TEST(RenderTest, MaterialNoTableRendersIsRefusedUnlessDirect) {
+  const std::string dir = MakeTempDir();
+  std::string csv = "lambda_nm,n,k\n";
+  for (int l = 300; l <= 900; l += 10) csv += std::to_string(l) + ",1.00000001,0\n";
+  alloycolor::testing::WriteText(dir + "/nearly-vacuum.csv", csv);
+  const std::string out = dir + "/x.png";
+  const auto refused =
+      RunProgram({"render", "--nk", dir + "/nearly-vacuum.csv", "--size", "16", "--out", out});
+  EXPECT_EQ(refused.status, 2);
+  EXPECT_NE(refused.err.find("above the limit"), std::string::npos) << refused.err;
+  EXPECT_NE(refused.err.find("(--direct)"), std::string::npos) << refused.err;
+  EXPECT_FALSE(fs::exists(out));
+  const auto direct = RunProgram({"render", "--nk", dir + "/nearly-vacuum.csv", "--size", "16",
+                                  "--direct", "--quiet", "--out", out});
+  EXPECT_EQ(direct.status, 0) << direct.err;
+  EXPECT_TRUE(fs::exists(out));
   fs::remove_all(dir);
 }
 

@@ -12,6 +12,8 @@
 //    definitions of MaterialX's pbrlib_defs.mtlx and stdlib_defs.mtlx; glTF against the
 //    rules of the glTF 2.0 JSON schema (glTF, asset, material,
 //    material.pbrMetallicRoughness).
+//  - BuildExport: the files of each format, and the F82 and Gulbrandsen documents carrying
+//    the fitted numbers into the settings they name.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -30,6 +32,7 @@
 #include "alloycolor/color/material_color.h"
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/io.h"
+#include "alloycolor/export/export_files.h"
 #include "alloycolor/export/renderer_materials.h"
 #include "alloycolor/export/spectral_export.h"
 #include "renderer_readers.h"
@@ -694,6 +697,72 @@ TEST(RendererFilesTest, EveryFormatWritesLoadableFilesThatStateTheirColourSpace)
     EXPECT_EQ(gb["materialx_artistic_ior"]["edge_color"], j["gulbrandsen"]["g"]);
   }
   fs::remove_all(dir);
+}
+
+TEST(BuildExportTest, EachFormatBuildsItsFiles) {
+  const color::Colorimeter d65 = color::Colorimeter::Load(DataDir(), "D65", 2);
+  const exports::ExportMaterial gold =
+      exports::MeasuredExportMaterial(d65, ReadNkFile(DataDir() + "/pure/Au-Johnson.yml"));
+  EXPECT_EQ(gold.id, "alloycolor_Au-Johnson");
+  const std::map<std::string, std::vector<std::string>> suffixes = {
+      {"spd", {".eta.spd", ".k.spd", ".pbrt", ".xml"}},
+      {"rgb-conductor", {".rgb.xml", ".blender.py"}},
+      {"f82", {".f82.json"}},
+      {"gulbrandsen", {".gulbrandsen.json"}},
+      {"materialx", {".mtlx"}},
+      {"gltf", {".gltf"}}};
+  std::vector<std::string> all;
+  for (const std::string& format : exports::ExportFormats()) {
+    if (format == "all") continue;
+    for (const std::string& suffix : suffixes.at(format)) all.push_back("p" + suffix);
+  }
+  for (const std::string& format : exports::ExportFormats()) {
+    const exports::ExportFiles e = exports::BuildExport(d65, gold, "p", {format, "", 0.0});
+    std::vector<std::string> paths;
+    for (const OutputFile& f : e.files) paths.push_back(f.path);
+    std::vector<std::string> expected = all;
+    if (format != "all") {
+      expected.clear();
+      for (const std::string& suffix : suffixes.at(format)) expected.push_back("p" + suffix);
+    }
+    EXPECT_EQ(paths, expected) << format;
+    EXPECT_EQ(e.summary["files"], nlohmann::json(paths)) << format;
+    EXPECT_EQ(e.summary["format"], format);
+    if (format != "all") continue;
+    const auto document = [&e](const std::string& path) {
+      for (const OutputFile& f : e.files) {
+        if (f.path == path) return nlohmann::json::parse(f.contents);
+      }
+      return nlohmann::json();
+    };
+    const nlohmann::json f82 = document("p.f82.json");
+    EXPECT_EQ(f82["openpbr"]["base_color"], e.summary["f82_tint"]["f0"]);
+    EXPECT_EQ(f82["openpbr"]["specular_color"], e.summary["f82_tint"]["tint"]);
+    EXPECT_EQ(f82["blender_metallic_f82"]["Edge Tint"], e.summary["f82_tint"]["tint"]);
+    const nlohmann::json g = document("p.gulbrandsen.json");
+    EXPECT_EQ(g["standard_surface"]["base_color"], e.summary["gulbrandsen"]["r"]);
+    EXPECT_EQ(g["materialx_artistic_ior"]["edge_color"], e.summary["gulbrandsen"]["g"]);
+    EXPECT_EQ(g["material"], gold.spectra.material);
+  }
+}
+
+TEST(BuildExportTest, BadSettingsAreNamed) {
+  const color::Colorimeter d65 = color::Colorimeter::Load(DataDir(), "D65", 2);
+  const exports::ExportMaterial gold =
+      exports::MeasuredExportMaterial(d65, ReadNkFile(DataDir() + "/pure/Au-Johnson.yml"));
+  const std::vector<std::pair<exports::ExportSettings, std::string>> cases = {
+      {{"obj", "", 0.0}, "format: "},
+      {{"gltf", "", 1.5}, "roughness: "},
+      {{"gltf", "", std::nan("")}, "roughness: "},
+      {{"spd", DataDir() + "/no-such-folder", 0.0}, "scene_dir: "}};
+  for (const auto& [settings, start] : cases) {
+    try {
+      exports::BuildExport(d65, gold, "p", settings);
+      ADD_FAILURE() << start;
+    } catch (const Error& e) {
+      EXPECT_EQ(std::string(e.what()).rfind(start, 0), 0u) << e.what();
+    }
+  }
 }
 
 TEST(RendererFilesTest, BadOptionsAreRefusedWithOneLine) {

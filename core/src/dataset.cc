@@ -14,6 +14,7 @@
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/io.h"
 #include "alloycolor/core/json.h"
+#include "alloycolor/core/permittivity.h"
 #include "alloycolor/core/text.h"
 
 namespace alloycolor {
@@ -25,8 +26,8 @@ using Json = nlohmann::json;
 constexpr const char* kAtomic = "atomic_fraction_a";
 constexpr const char* kWeight = "weight_fraction_a";
 constexpr double kSameComposition = 1e-9;
-// Samples closer than this in atomic fraction are one composition measured twice: a fit
-// through both would have to bend by 1/kDistinctComposition.
+// Samples closer than this in atomic fraction, but not equal, are a typing slip: a fit
+// through both would have to bend by 1/kDistinctComposition. Replicates give one x.
 constexpr double kDistinctComposition = 1e-6;
 
 std::string Quote60(const std::string& text) { return Quote(text, 60); }
@@ -260,16 +261,17 @@ Dataset Load(const std::string& dir_or_manifest) {
     }
   }
 
+  // Replicates (distinct files at one composition) stay in the manifest's order, adjacent.
   std::stable_sort(dataset.samples.begin(), dataset.samples.end(),
                    [](const Sample& s, const Sample& t) { return s.x_atomic < t.x_atomic; });
   for (std::size_t i = 1; i < dataset.samples.size(); ++i) {
     const Sample& s = dataset.samples[i - 1];
     const Sample& t = dataset.samples[i];
-    if (t.x_atomic - s.x_atomic <= kDistinctComposition) {
+    if (t.x_atomic != s.x_atomic && t.x_atomic - s.x_atomic <= kDistinctComposition) {
       Fail(manifest + ": samples " + Quote60(s.file) + " and " + Quote60(t.file) +
-           " have the same composition, x = " + FormatNumber(s.x_given) +
-           (t.x_given != s.x_given ? " and " + FormatNumber(t.x_given) + " (closer than 1e-6)"
-                                   : std::string()));
+           " have almost the same composition, x = " + FormatNumber(s.x_given) + " and " +
+           FormatNumber(t.x_given) +
+           " (closer than 1e-6); replicates of one composition give the same x");
     }
   }
 
@@ -293,7 +295,8 @@ Dataset Load(const std::string& dir_or_manifest) {
       if (s.nk.lambda_nm == t.nk.lambda_nm && s.nk.n == t.nk.n && s.nk.k == t.nk.k) {
         Fail(manifest + ": samples " + Quote60(s.file) + " and " + Quote60(t.file) +
              " hold the same n, k at every wavelength (at x = " + FormatNumber(s.x_given) +
-             " and " + FormatNumber(t.x_given) + "); one measurement is one composition");
+             " and " + FormatNumber(t.x_given) +
+             "); one measurement is one composition, and one sample");
       }
     }
   }
@@ -319,6 +322,68 @@ const Sample* FindSample(const Dataset& dataset, double x) {
     }
   }
   return nullptr;
+}
+
+const Sample* FindSampleByFile(const Dataset& dataset, const std::string& file) {
+  if (file.empty()) return nullptr;
+  for (const Sample& s : dataset.samples) {
+    if (s.file == file || s.path == file) return &s;
+  }
+  const Sample* found = nullptr;
+  for (const Sample& s : dataset.samples) {
+    const std::string written = s.columns.n.empty() ? s.file : s.file.substr(0, s.file.rfind(" ("));
+    const bool match = written == file || fs::path(s.path).filename().string() == file ||
+                       (!s.k_path.empty() && fs::path(s.k_path).filename().string() == file);
+    if (!match) continue;
+    if (found != nullptr) return nullptr;  // ambiguous
+    found = &s;
+  }
+  return found;
+}
+
+std::vector<const Sample*> SamplesAtComposition(const Dataset& dataset, double x_atomic) {
+  std::vector<const Sample*> found;
+  for (const Sample& s : dataset.samples) {
+    if (std::abs(s.x_atomic - x_atomic) <= kSameComposition) found.push_back(&s);
+  }
+  return found;
+}
+
+NkSpectrum MeanSpectrum(const std::vector<const Sample*>& replicates) {
+  if (replicates.empty()) Fail("the mean of no spectrum");
+  if (replicates.size() == 1) return replicates.front()->nk;
+  double lo = -HUGE_VAL, hi = HUGE_VAL;
+  std::string names;
+  for (const Sample* s : replicates) {
+    lo = std::max(lo, s->nk.lambda_min_nm());
+    hi = std::min(hi, s->nk.lambda_max_nm());
+    names += (names.empty() ? "" : ", ") + s->file;
+  }
+  if (!(lo < hi)) Fail("replicates " + names + " share no wavelength range");
+  std::vector<double> grid;
+  for (const Sample* s : replicates) {
+    for (double l : s->nk.lambda_nm) {
+      if (l >= lo && l <= hi) grid.push_back(l);
+    }
+  }
+  std::sort(grid.begin(), grid.end());
+  grid.erase(std::unique(grid.begin(), grid.end()), grid.end());
+  NkSpectrum mean;
+  mean.source = "mean of " + names;
+  mean.lambda_nm = grid;
+  for (double l : grid) {
+    Complex<double> eps{0, 0};
+    for (const Sample* s : replicates) {
+      const std::complex<double> nk = NkAt(s->nk, l);
+      const Complex<double> e = PermittivityFromIndex(Complex<double>{nk.real(), nk.imag()});
+      eps.re += e.re / replicates.size();
+      eps.im += e.im / replicates.size();
+    }
+    const Complex<double> nk = IndexFromPermittivity(eps);
+    mean.n.push_back(nk.re);
+    mean.k.push_back(nk.im);
+  }
+  return mean;
 }
 
 std::vector<double> DistinctCompositions(const Dataset& dataset) {

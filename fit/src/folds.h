@@ -49,8 +49,9 @@ inline EndSampleFits* FitMemoEndFits(FitMemo& memo) { return memo.end_fits.get()
 // most, spread by rank.
 std::vector<double> ErrorFolds(const Dataset& dataset);
 
-// One composition held out: the method built on the rest (null where it could not be),
-// the held-out samples, and what the prediction error needs of the fold.
+// One composition held out with all its replicates (one left in would predict its twin):
+// the method built on the rest (null where it could not be), the held-out samples, and
+// what the prediction error needs of the fold.
 struct Fold {
   double x = 0;
   std::unique_ptr<AlloyModel> model;

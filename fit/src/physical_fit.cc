@@ -712,7 +712,10 @@ PhysicalFitResult FitPhysical(const Dataset& dataset, const PhysicalFitOptions& 
 namespace {
 
 PhysicalFitResult FitPhysicalAtDegree(const Dataset& dataset, const PhysicalFitOptions& options) {
-  if (dataset.samples.size() < 2) {
+  // Every sample (each replicate too) is an observation of its own; the degree is bounded
+  // by the distinct compositions.
+  const int compositions = static_cast<int>(DistinctCompositions(dataset).size());
+  if (compositions < 2) {
     throw Error(dataset.manifest_path + ": the physical fit needs at least two compositions");
   }
   auto progress = [&](const std::string& message) {
@@ -725,10 +728,10 @@ PhysicalFitResult FitPhysicalAtDegree(const Dataset& dataset, const PhysicalFitO
   std::vector<std::string> warnings = data.warnings;
   const int n = static_cast<int>(data.samples.size());
   int degree = options.degree;
-  if (degree > n - 1) {
-    degree = n - 1;
+  if (degree > compositions - 1) {
+    degree = compositions - 1;
     warnings.push_back("degree lowered to " + std::to_string(degree) + ": only " +
-                       std::to_string(n) + " compositions");
+                       std::to_string(compositions) + " compositions");
   }
   const SampleData& lo_end = data.samples.front();
   const SampleData& hi_end = data.samples.back();

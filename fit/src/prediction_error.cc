@@ -3,7 +3,6 @@
 // errors; what it misses at its own training compositions; the scatter of replicate
 // samples; and the resolution of the data.
 #include <algorithm>
-#include <boost/math/distributions/students_t.hpp>
 #include <cmath>
 #include <complex>
 #include <cstdio>
@@ -305,25 +304,11 @@ void RecordInSampleError(const Dataset& dataset, const FitSettings& settings, Al
 
 double SigmaCalibration(const std::vector<double>& log_ratios) {
   if (log_ratios.empty()) return 1;
-  constexpr double kPriorLogSpread = 0.6, kPriorFolds = 2;
-  const double f = static_cast<double>(log_ratios.size());
-  double mu = 0, sq = 0;
-  for (double v : log_ratios) mu += v;
-  mu /= f;
-  for (double v : log_ratios) sq += (v - mu) * (v - mu);
-  const double s2 = (kPriorFolds * kPriorLogSpread * kPriorLogSpread + sq) / (kPriorFolds + f - 1);
-  const double spread = std::sqrt(s2 * (1 + 1 / f));
-  // A new log ratio's predictive law: Student's t with the pooled variance's degrees of
-  // freedom (normal-inverse-chi-squared prior), its quantiles wider than the normal's
-  // while the folds are few.
-  const boost::math::students_t law(kPriorFolds + f - 1);
-  const double q68 = boost::math::quantile(law, 0.68), q95 = boost::math::quantile(law, 0.95);
-  const double c68 = std::exp(mu + q68 * spread), c95 = std::exp(mu + q95 * spread) / 2;
-  // Both aims hold where the ratio's 95 % quantile is at most twice its 68 % one (c95 <= c68,
-  // as for a half-normal error). Where it is more they cannot: the factor for 95 % inside
-  // two sigma would put far more than 68 % inside one (84 % in the bundled sets' pooled
-  // leave-one-out folds). There the factor splits the difference: the geometric mean.
-  return std::clamp(std::max(c68, std::sqrt(c68 * c95)), 1e-3, 1e3);
+  // The one-sigma is the RMS colour difference of the draws: the factor makes the folds'
+  // observed / predicted ratios RMS 1.
+  double sum_sq = 0;
+  for (double v : log_ratios) sum_sq += std::exp(2 * std::clamp(v, -20.0, 20.0));
+  return std::clamp(std::sqrt(sum_sq / log_ratios.size()), 1e-3, 1e3);
 }
 
 void EstimatePredictionError(const MethodInfo& method, std::vector<Fold>& fitted,

@@ -1,6 +1,6 @@
 // `auto` (BuildAuto) and the physical model's composition degree: candidates built with
-// their folds, scored on them, and the simplest within the folds' own scatter of the best
-// chosen.
+// their folds, scored on them, and the first in order of preference within the folds' own
+// scatter of the best chosen.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -60,7 +60,7 @@ double Rms(const std::vector<double>& values) {
 }
 
 // The one-standard-error choice among candidates listed in order of preference (auto:
-// simplest first; the physical degree: Nordheim's first): the first whose
+// MethodTraits::auto_rank; the physical degree: Nordheim's first): the first whose
 // mean lies within kAutoTolerance of the lowest, or above it by no more than the standard
 // error of their fold-by-fold differences (paired folds, from two folds up):
 // leave-one-out with few samples flatters the flexible candidates, and a lead within the
@@ -70,6 +70,7 @@ double Rms(const std::vector<double>& values) {
 struct Choice {
   size_t chosen, best;
   std::string rule;  // why the chosen, if it is not the best: "10 %" or the standard error
+  std::vector<size_t> acceptable;  // every candidate the rule accepts, in order; chosen first
 };
 
 Choice ChooseSimplest(const std::vector<Scored>& candidates, bool squared = false) {
@@ -100,9 +101,11 @@ Choice ChooseSimplest(const std::vector<Scored>& candidates, bool squared = fals
     if (loss[i].empty()) continue;
     const bool close = mean[i] <= mean[c.best] * tolerance;
     if (close || within_scatter(i)) {
-      c.chosen = i;
-      if (i != c.best) c.rule = close ? "10 %" : "one standard error of the folds' differences";
-      return c;
+      if (c.acceptable.empty()) {
+        c.chosen = i;
+        if (i != c.best) c.rule = close ? "10 %" : "one standard error of the folds' differences";
+      }
+      c.acceptable.push_back(i);
     }
   }
   return c;
@@ -325,23 +328,26 @@ bool ChoosesDegree(const MethodInfo& method, const FitSettings& settings) {
 
 namespace {
 
-// The in-sample errors of the model at the end compositions, which no fold holds out, in
-// the metric of the folds' scores: a model that contradicts the user's own end samples is
-// scored by that miss as if the samples had been held out (a held-out sample is no nearer).
-std::vector<double> EndSampleScores(const AlloyModel& model, const Dataset& dataset) {
+// The model's larger in-sample error at the two end compositions, which no fold holds
+// out, in the metric of the folds' scores, and whether it is a miss (RecordInSampleError).
+double EndMiss(const AlloyModel& model, const Dataset& dataset, bool* misses) {
   const std::vector<double> xs = DistinctCompositions(dataset);
-  std::vector<double> scores;
+  double worst = 0;
+  *misses = false;
   for (const InSampleError& r : model.in_sample()) {
     if (r.x_atomic != xs.front() && r.x_atomic != xs.back()) continue;
-    scores.push_back(std::isfinite(r.delta_e00) ? r.delta_e00 : r.reflectance_rms);
+    const bool colour = std::isfinite(r.delta_e00);
+    const double e = colour ? r.delta_e00 : r.reflectance_rms;
+    worst = std::max(worst, e);
+    *misses |= e > (colour ? kInSampleMissDe00 : kInSampleMissReflectance);
   }
-  return scores;
+  return worst;
 }
 
 }  // namespace
 
 std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings& settings) {
-  const std::vector<const MethodInfo*> order = AutoCandidates();  // simplest first
+  const std::vector<const MethodInfo*> order = AutoCandidates();  // preferred first
   if (settings.colorimeter == nullptr) throw Error("auto: no colorimeter to score colours with");
   if (order.empty()) throw Error("auto: no method is a candidate");
   MethodSelection selection;
@@ -365,6 +371,7 @@ std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings&
   inner.progress = {};
   inner.start = nullptr;
   std::vector<Scored> candidates;
+  std::vector<bool> misses_end;
   const int compositions = static_cast<int>(DistinctCompositions(dataset).size());
   for (const MethodInfo* method : order) {
     Report(settings.progress, "auto: scoring " + method->name + " by leave-one-out over " +
@@ -383,19 +390,24 @@ std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings&
                       std::to_string(r.model->fit_summary().degree);
       r.model.reset();
     }
-    if (r.model) {
-      const std::vector<double> ends = EndSampleScores(*r.model, dataset);
-      r.values.insert(r.values.end(), ends.begin(), ends.end());
-      double sum = 0;
-      for (double v : r.values) sum += v;
-      r.score.mean = sum / std::max<size_t>(r.values.size(), 1);
-      for (double v : ends) r.score.max = std::max(r.score.max, v);
-      r.score.ends = static_cast<int>(ends.size());
-    }
+    bool misses = false;
+    if (r.model) r.score.end_miss = EndMiss(*r.model, dataset, &misses);
+    misses_end.push_back(misses);
     selection.scores.push_back(r.score);
     if (selection.metric.empty()) selection.metric = candidates.back().metric;
   }
   Choice c = ChooseSimplest(candidates);
+  // The folds cannot hold out the ends: among the candidates the folds cannot tell apart,
+  // one that contradicts the user's own end samples gives way to one that does not.
+  if (c.chosen < order.size() && misses_end[c.chosen]) {
+    for (size_t i : c.acceptable) {
+      if (!misses_end[i]) {
+        c.chosen = i;
+        c.rule = "the ends' own samples";
+        break;
+      }
+    }
+  }
   // One fold (three compositions): it holds out the middle sample and predicts it from the
   // ends, where every interpolation is a straight line in its own space, so the fold
   // compares spaces, not the curves delivered through three samples, and one score has no
@@ -422,7 +434,7 @@ std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings&
   char reason[320];
   if (c.rule.empty()) {
     std::snprintf(reason, sizeof reason,
-                  "%s: lowest mean %s, %.4g over %d held-out samples and the ends' own",
+                  "%s: lowest mean %s, %.4g over %d held-out samples",
                   chosen_name.c_str(), selection.metric.c_str(), chosen_score.mean,
                   chosen_score.folds);
   } else if (c.rule == "one fold") {
@@ -431,9 +443,15 @@ std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings&
                   "ends, not the curves through three samples; %s scored %.4g, %s %.4g",
                   chosen_name.c_str(), chosen_name.c_str(), chosen_score.mean,
                   best_name.c_str(), best_score.mean);
+  } else if (c.rule == "the ends' own samples") {
+    std::snprintf(reason, sizeof reason,
+                  "%s: mean %s %.4g over %d held-out samples, within the folds' tolerance of "
+                  "the lowest (%s, %.4g), the first in auto's order true to the end samples",
+                  chosen_name.c_str(), selection.metric.c_str(), chosen_score.mean,
+                  chosen_score.folds, best_name.c_str(), best_score.mean);
   } else {
     std::snprintf(reason, sizeof reason,
-                  "%s: mean %s %.4g over %d held-out samples and the ends' own, the simplest "
+                  "%s: mean %s %.4g over %d held-out samples, the first in auto's order "
                   "within %s of the lowest (%s, %.4g)",
                   chosen_name.c_str(), selection.metric.c_str(), chosen_score.mean,
                   chosen_score.folds, c.rule.c_str(), best_name.c_str(), best_score.mean);

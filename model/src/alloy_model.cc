@@ -263,7 +263,6 @@ std::vector<std::vector<std::complex<double>>> AlloyModel::PermittivityDraws(
   std::vector<std::vector<std::complex<double>>> draws(count, centre);
   for (int d = 0; d < count; ++d) {
     const std::complex<double> z(normal(rng), normal(rng));
-    const double misfit_sign = d % 2 == 0 ? 1.0 : -1.0;
     const double scatter_sign = (d / 2) % 2 == 0 ? 1.0 : -1.0;
     const std::vector<std::complex<double>>* replicate =
         scatter.empty() ? nullptr : &scatter[(d / 4) % scatter.size()];
@@ -273,7 +272,7 @@ std::vector<std::vector<std::complex<double>>> AlloyModel::PermittivityDraws(
               std::complex<double>(normal(precision_rng), normal(precision_rng));
     }
     for (size_t i = 0; i < centre.size(); ++i) {
-      std::complex<double> relative = scale[i] * z + misfit_sign * misfit[i] + floor;
+      std::complex<double> relative = scale[i] * z + misfit[i] + floor;
       if (replicate != nullptr) relative += scatter_sign * (*replicate)[i];
       std::complex<double> v = centre[i] + std::abs(centre[i]) * relative;
       if (v.imag() < 0) v.imag(0.0);  // a draw stays passive
@@ -414,7 +413,7 @@ nlohmann::json AlloyModel::ToJson() const {
     nlohmann::json scores = nlohmann::json::array();
     for (const MethodScore& m : fit_summary_.selection.scores) {
       nlohmann::json row = {{"method", m.method}, {"folds", m.folds}};
-      if (m.ends > 0) row["ends"] = m.ends;
+      if (m.end_miss > 0) row["end_miss"] = m.end_miss;
       if (m.error.empty()) {
         row["mean"] = m.mean;
         row["max"] = m.max;
@@ -653,8 +652,8 @@ void AlloyModel::ReadCommon(const nlohmann::json& doc) {
         MethodScore m;
         m.method = String(Field(scores[i], "method", where), where + ".method");
         m.folds = static_cast<int>(Number(Field(scores[i], "folds", where), where + ".folds"));
-        if (scores[i].contains("ends")) {
-          m.ends = static_cast<int>(Number(scores[i].at("ends"), where + ".ends"));
+        if (scores[i].contains("end_miss")) {
+          m.end_miss = Number(scores[i].at("end_miss"), where + ".end_miss");
         }
         if (scores[i].contains("error")) {
           m.error = String(scores[i].at("error"), where + ".error");
@@ -759,6 +758,6 @@ std::unique_ptr<AlloyModel> ReadModelFile(const std::string& path) {
   return ModelFromJson(doc, path);
 }
 
-std::string ModelFileText(const AlloyModel& model) { return model.ToJson().dump(1) + "\n"; }
+std::string ModelFileText(const AlloyModel& model) { return JsonText(model.ToJson(), 1) + "\n"; }
 
 }  // namespace alloycolor

@@ -29,7 +29,7 @@ MethodTraits Traits(int auto_rank, double gap_exponent) {
 }
 
 std::vector<MethodInfo> BuiltInMethods() {
-  MethodTraits smooth = Traits(4, 1);
+  MethodTraits smooth = Traits(0, 1);
   smooth.chosen_on_one_fold = true;
   MethodTraits physical = Traits(5, 1);
   physical.validate_default = false;  // minutes per split on a large set
@@ -39,17 +39,17 @@ std::vector<MethodInfo> BuiltInMethods() {
       {"paper",
        "the paper's baseline: per-sample Drude inversion (eq. 11, 12), tau and m* "
        "interpolated linearly in composition",
-       &ReadSampleModel<SampleModel::Kind::kPaper>, nullptr, Traits(3, 2)},
+       &ReadSampleModel<SampleModel::Kind::kPaper>, nullptr, Traits(4, 2)},
       {"eps-linear", "eps interpolated linearly in composition at every wavelength",
-       &ReadSampleModel<SampleModel::Kind::kEpsLinear>, nullptr, Traits(1, 2)},
+       &ReadSampleModel<SampleModel::Kind::kEpsLinear>, nullptr, Traits(2, 2)},
       {"eps-pchip",
        "eps1 and eps2 interpolated in composition by a monotone cubic (PCHIP) at every "
        "wavelength",
-       &ReadSampleModel<SampleModel::Kind::kEpsPchip>, nullptr, Traits(0, 1)},
+       &ReadSampleModel<SampleModel::Kind::kEpsPchip>, nullptr, Traits(1, 1)},
       {"eps-spline",
        "eps1 and eps2 interpolated in composition by a natural cubic spline at every "
        "wavelength",
-       &ReadSampleModel<SampleModel::Kind::kEpsSpline>, nullptr, Traits(2, 1)},
+       &ReadSampleModel<SampleModel::Kind::kEpsSpline>, nullptr, Traits(3, 1)},
       {"smooth",
        "eps1 and eps2 fitted as monotone cubic curves of composition through knots at every "
        "wavelength, a regression whose smoothing leave-one-composition-out (or, with few "

@@ -247,7 +247,14 @@ std::unique_ptr<BoundModel> SampleModel::Bind(const std::vector<double>& lambda_
 }
 
 SampleModel::SampleModel(Kind kind, const Dataset& dataset) : kind_(kind) {
-  for (const Sample& s : dataset.samples) nodes_.push_back({s.x_atomic, s.nk});
+  // One node per composition: the replicates' mean there.
+  try {
+    for (double x : DistinctCompositions(dataset)) {
+      nodes_.push_back({x, MeanSpectrum(SamplesAtComposition(dataset, x))});
+    }
+  } catch (const Error& e) {
+    throw Error(dataset.manifest_path + ": " + e.what());
+  }
   const WavelengthRange range = CommonRange(dataset);
   SetCommon(dataset, range.lo_nm, range.hi_nm);
   try {
@@ -307,7 +314,10 @@ SampleModel::SampleModel(Kind kind, const nlohmann::json& doc, const std::string
 
 void SampleModel::Validate() {
   if (nodes_.size() < 2) {
-    throw Error("the " + method() + " model needs at least two samples");
+    throw Error("the " + method() + " model needs at least two samples, at distinct compositions" +
+                (nodes_.size() == 1 ? "; all are at x = " + FormatNumber(nodes_[0].x) + " (" +
+                                          nodes_[0].nk.source + ")"
+                                    : std::string()));
   }
   for (size_t i = 1; i < nodes_.size(); ++i) {
     if (!(nodes_[i].x > nodes_[i - 1].x)) {

@@ -6,7 +6,12 @@
 // wrapper in python/alloycolor/__init__.py adds numpy broadcasting and the data root.
 // Long work (fits, validation, large colour arrays, rendering) runs without the GIL; a
 // progress callback, when given, is called with the GIL held again. alloycolor::Error
-// becomes the Python exception alloycolor.Error (a ValueError) with the same message.
+// becomes the Python exception alloycolor.Error (a ValueError) with the same message, but
+// for the command-line spellings some library messages still carry (--extrapolate,
+// --smoothing, --columns N,K), which are put in the package's words (PythonWords).
+// Nothing here keeps an OutputGuard: the package notes no inputs (m = load_model(p);
+// m.save(p) replaces the file, atomically), and files written as a set (write_spd's eta
+// and k) are refused when two are one file.
 #include <pybind11/functional.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -18,6 +23,7 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -27,7 +33,11 @@
 #include "alloycolor/core/dataset.h"
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/io.h"
+#include "alloycolor/core/json.h"
+#include "alloycolor/core/output.h"
+#include "alloycolor/core/setting.h"
 #include "alloycolor/core/permittivity.h"
+#include "alloycolor/export/export_files.h"
 #include "alloycolor/export/spectral_export.h"
 #include "alloycolor/fit/methods.h"
 #include "alloycolor/model/alloy_model.h"
@@ -225,7 +235,31 @@ py::array_t<std::complex<double>> ModelOptics(const AlloyModel& model, const Arr
 }
 
 py::object JsonToPython(const nlohmann::json& doc) {
-  return py::module_::import("json").attr("loads")(doc.dump());
+  return py::module_::import("json").attr("loads")(JsonText(doc));
+}
+
+// A library message in the package's words: the command-line spellings of settings that
+// the library's messages still name replaced by the keywords of this package.
+std::string PythonWords(std::string message) {
+  static constexpr std::pair<std::string_view, std::string_view> kSpellings[] = {
+      {" (use --extrapolate)",
+       " (the Python package evaluates a model within its training range only)"},
+      {"--lambda-from/--lambda-to/--lambda-step: ", "lambda_range_nm: "},
+      {"--lambda-from/--lambda-to: ", "lambda_range_nm: "},
+      {"--lambda-step: ", "lambda_range_nm: step: "},
+      {"--smoothing: ", "smoothing: "},
+      {"--space: ", "space: "},
+      {"--degree: ", "degree: "},
+      {"choose the columns with --columns N,K", "choose the columns with columns=(N, K)"},
+      {"`alloycolor fit --method smooth`", "alloycolor.fit(data, \"smooth\")"},
+  };
+  for (const auto& [flag, words] : kSpellings) {
+    for (std::size_t at = message.find(flag); at != std::string::npos;
+         at = message.find(flag, at + words.size())) {
+      message.replace(at, flag.size(), words);
+    }
+  }
+  return message;
 }
 
 py::dict SpectrumDict(const NkSpectrum& nk, const std::vector<std::string>& warnings) {
@@ -250,6 +284,33 @@ py::array_t<float> ToNumpy(const render::LinearImage& image) {
   return out;
 }
 
+// One tile as `alloycolor render` shades it: from the guarded table (render::GuardedTable),
+// or by direct spectral evaluation at every pixel. index_on gives n + ik on a colorimeter's
+// grid; label names the material in errors; an empty background is the lighting's default.
+template <typename IndexOn>
+py::object RenderTile(const IndexOn& index_on, const std::string& label, const std::string& shape,
+                      int size, const std::string& lighting, double roughness,
+                      const std::string& background, const std::string& illuminant,
+                      int observer_deg, bool direct, bool linear) {
+  render::RenderOptions options;
+  options.shape = render::ShapeFromName(shape);
+  options.size = size;
+  options.lighting = render::LightingFromName(lighting);
+  options.roughness = roughness;
+  options.background = background.empty() ? render::DefaultBackground(options.lighting)
+                                          : render::BackgroundFromName(background);
+  render::LinearImage image;
+  {
+    py::gil_scoped_release release;
+    const color::Colorimeter& colorimeter = GetColorimeter(illuminant, observer_deg);
+    const render::Renderer renderer(colorimeter, options);
+    const render::DirectReflection reflection = renderer.Direct(index_on(colorimeter));
+    image = direct ? renderer.Render(reflection)
+                   : renderer.Render(render::GuardedTable(reflection, label).table);
+  }
+  return linear ? py::object(ToNumpy(image)) : py::object(ToNumpy(render::EncodeSRGB8(image)));
+}
+
 py::dict SpectraDict(const exports::ConductorSpectra& s) {
   py::dict d;
   d["material"] = s.material;
@@ -260,11 +321,53 @@ py::dict SpectraDict(const exports::ConductorSpectra& s) {
   return d;
 }
 
+// Writes the files `alloycolor export` writes, as a set, and returns its --json document
+// with the material's notes. material_on builds the material from the D65 colorimeter.
+template <typename MaterialOn>
+py::object WriteExport(const MaterialOn& material_on, const std::string& prefix,
+                       const std::string& format, const std::string& scene_dir, double roughness) {
+  const exports::ExportSettings settings{format, scene_dir, roughness};
+  nlohmann::json doc;
+  {
+    py::gil_scoped_release release;
+    // As `alloycolor export`: the truth under D65, 2 degrees.
+    const color::Colorimeter& d65 = GetColorimeter("D65", 2);
+    const exports::ExportMaterial material = material_on(d65);
+    const exports::ExportFiles e = exports::BuildExport(d65, material, prefix, settings);
+    WriteFileSetAtomic(e.files);
+    doc = e.summary;
+    doc["notes"] = material.spectra.notes;
+  }
+  return JsonToPython(doc);
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_alloycolor, m) {
   m.doc() = "Compiled core of the alloycolor package; use the alloycolor package itself.";
   py::register_exception<Error>(m, "Error", PyExc_ValueError);
+  // Registered after, so tried first: the same exception, the message in Python's words.
+  py::register_exception_translator([](std::exception_ptr thrown) {
+    try {
+      if (thrown) std::rethrow_exception(thrown);
+    } catch (const Error& e) {
+      const py::object error = py::module_::import("alloycolor._alloycolor").attr("Error");
+      PyErr_SetString(error.ptr(), PythonWords(e.what()).c_str());
+    }
+  });
+  m.def("_python_words", &PythonWords);
+  m.attr("_max_fit_grid_nodes") = kMaxFitGridNodes;
+  m.attr("_max_tile_size") = render::kMaxTileSize;
+  // The library's check of a number against a range, named as the caller gave it.
+  m.def("_check_number", [](const std::string& name, double value, double lo, double hi,
+                            bool whole) { CheckNumber(name, value, NumberRange{lo, hi, whole}); });
+
+  // The library's checks of the fit's numeric settings, by their names ("degree", ...).
+  // `label` is the keyword the value was given as ("degree", "lambda_range_nm[2] (step)").
+  m.def("_check_fit_setting",
+        [](const std::string& setting, double value, const std::string& label) {
+          CheckNumber(label, value, FitSettingRange(setting));
+        });
 
   m.def("_set_data_root", [](const std::string& root) { DataRootStorage() = root; });
   m.def("_data_root", []() { return DataRootStorage(); });
@@ -299,7 +402,22 @@ PYBIND11_MODULE(_alloycolor, m) {
       .def_property_readonly("lambda_nm", [](const NkSpectrum& s) { return ToArray(s.lambda_nm); })
       .def_property_readonly("n", [](const NkSpectrum& s) { return ToArray(s.n); })
       .def_property_readonly("k", [](const NkSpectrum& s) { return ToArray(s.k); })
-      .def("_color", &SpectrumColors);
+      .def("_color", &SpectrumColors)
+      .def("_render",
+           [](const NkSpectrum& nk, const std::string& shape, int size, const std::string& lighting,
+              double roughness, const std::string& background, const std::string& illuminant,
+              int observer_deg, bool direct, bool linear) {
+             return RenderTile(
+                 [&](const color::Colorimeter& c) { return color::IndexOnGrid(c, nk); }, nk.source,
+                 shape, size, lighting, roughness, background, illuminant, observer_deg, direct,
+                 linear);
+           })
+      .def("_export", [](const NkSpectrum& nk, const std::string& prefix, const std::string& format,
+                         const std::string& scene_dir, double roughness) {
+        return WriteExport(
+            [&](const color::Colorimeter& d65) { return exports::MeasuredExportMaterial(d65, nk); },
+            prefix, format, scene_dir, roughness);
+      });
 
   py::class_<Dataset>(m, "_Dataset")
       .def(py::init(&LoadDataset))
@@ -397,41 +515,44 @@ PYBIND11_MODULE(_alloycolor, m) {
       .def("_render",
            [](const AlloyModel& a, double x, const std::string& shape, int size,
               const std::string& lighting, double roughness, const std::string& background,
-              const std::string& illuminant, int observer_deg, bool linear) {
+              const std::string& illuminant, int observer_deg, bool direct, bool linear) {
              a.CheckInRange(x);
-             render::RenderOptions options;
-             options.shape = render::ShapeFromName(shape);
-             options.size = size;
-             options.lighting = render::LightingFromName(lighting);
-             options.roughness = roughness;
-             options.background = render::BackgroundFromName(background);
-             render::LinearImage image;
-             {
-               py::gil_scoped_release release;
-               const color::Colorimeter& colorimeter = GetColorimeter(illuminant, observer_deg);
-               const render::Renderer renderer(colorimeter, options);
-               image = renderer.Render(renderer.Table(color::IndexOnGrid(colorimeter, a, x)));
-             }
-             return linear ? py::object(ToNumpy(image))
-                           : py::object(ToNumpy(render::EncodeSRGB8(image)));
+             return RenderTile(
+                 [&](const color::Colorimeter& c) { return color::IndexOnGrid(c, a, x); },
+                 render::AlloyLabel(a, x), shape, size, lighting, roughness, background, illuminant,
+                 observer_deg, direct, linear);
            })
       .def("_spectra",
            [](const AlloyModel& a, double x, const std::string& material) {
              a.CheckInRange(x);
              return SpectraDict(exports::ModelSpectra(a, x, material));
            })
+      .def("_export",
+           [](const AlloyModel& a, double x, const std::string& origin, const std::string& prefix,
+              const std::string& format, const std::string& scene_dir, double roughness) {
+             a.CheckInRange(x);
+             return WriteExport(
+                 [&](const color::Colorimeter& d65) {
+                   return exports::AlloyExportMaterial(d65, a, x, origin);
+                 },
+                 prefix, format, scene_dir, roughness);
+           })
+      .def("_description",
+           [](const AlloyModel& a, double x, const std::string& origin) {
+             return exports::AlloyDescription(a, x, origin);
+           })
       .def("_write_spd", [](const AlloyModel& a, double x, const std::string& material,
                             const std::string& eta_path, const std::string& k_path) {
         a.CheckInRange(x);
         const exports::ConductorSpectra s = exports::ModelSpectra(a, x, material);
         const std::string eta = exports::SpdText(s, true), k = exports::SpdText(s, false);
-        WriteFileAtomic(eta_path, eta);
-        WriteFileAtomic(k_path, k);
+        // One set: both replaced or neither; one file given twice is refused.
+        WriteFileSetAtomic({{eta_path, eta}, {k_path, k}});
       });
 
   m.def("_validate",
         [](const Dataset& dataset, const std::vector<std::string>& methods,
-           const std::vector<std::vector<double>>& splits, const std::string& mode,
+           const std::vector<std::string>& holdout, const std::string& mode,
            const std::vector<double>& angles_deg, const std::string& illuminant, int observer_deg,
            const std::string& html_path, const std::string& json_path, const py::object& progress) {
           for (const std::string& method : methods) {
@@ -440,6 +561,18 @@ PYBIND11_MODULE(_alloycolor, m) {
           for (double a : angles_deg) {
             if (!(a >= 0 && a < 90))
               throw Error("angles_deg: " + std::to_string(a) + " lies outside 0-90 degrees");
+          }
+          // As `alloycolor validate`: no names, leave each interior composition out (with
+          // its replicates); otherwise one split of files and compositions.
+          std::vector<validate::SampleSplit> splits;
+          if (holdout.empty()) {
+            splits = validate::LeaveOneOutSplits(dataset);
+          } else {
+            try {
+              splits = {validate::HoldoutSplit(dataset, holdout)};
+            } catch (const Error& e) {
+              throw Error(std::string("holdout: ") + e.what());
+            }
           }
           validate::ValidationOptions options;
           // As `alloycolor validate`: fits score colour under D65, 2 degrees.
@@ -456,8 +589,10 @@ PYBIND11_MODULE(_alloycolor, m) {
             const validate::ValidationReport report =
                 validate::ComputeValidation(dataset, splits, colorimeter, options, callback);
             json = validate::ValidationJson(report);
-            if (!html_path.empty()) WriteFileAtomic(html_path, validate::ValidationHtml(report));
-            if (!json_path.empty()) WriteFileAtomic(json_path, json.dump(2) + "\n");
+            std::vector<OutputFile> files;
+            if (!html_path.empty()) files.push_back({html_path, validate::ValidationHtml(report)});
+            if (!json_path.empty()) files.push_back({json_path, JsonText(json, 2) + "\n"});
+            if (!files.empty()) WriteFileSetAtomic(files);
           }
           return JsonToPython(json);
         });

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 #include <utility>
 
@@ -273,10 +274,20 @@ Shape ShapeFromName(const std::string& name) {
 
 std::string ShapeName(Shape shape) { return shape == Shape::kSphere ? "sphere" : "ring"; }
 
+std::string AlloyLabel(const AlloyModel& model, double x_atomic) {
+  char x[32];
+  std::snprintf(x, sizeof x, "%.4g", x_atomic);
+  return model.system().Name() + " x=" + x;
+}
+
 Background BackgroundFromName(const std::string& name) {
   if (name == "transparent") return Background::kTransparent;
   if (name == "backdrop") return Background::kBackdrop;
   throw Error("unknown background '" + name + "' (transparent, backdrop)");
+}
+
+Background DefaultBackground(Lighting lighting) {
+  return lighting == Lighting::kUniform ? Background::kTransparent : Background::kBackdrop;
 }
 
 NormalMap TraceNormals(Shape shape, int size) {

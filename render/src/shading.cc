@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 
 #include "alloycolor/core/error.h"
@@ -244,6 +245,26 @@ double ReflectionTableError(const ReflectionTable& table, const DirectReflection
     }
   }
   return worst;
+}
+
+CheckedTable GuardedTable(const DirectReflection& direct, const std::string& what) {
+  const int samples = direct.roughness() > 0.0 ? kRoughTableCheckSamples : kTableCheckSamples;
+  int size = kReflectionTableSize;
+  CheckedTable checked{ReflectionTable(direct, size), 0.0};
+  checked.error = ReflectionTableError(checked.table, direct, samples);
+  while (checked.error > kTableErrorLimit && size < kMaxReflectionTableSize) {
+    size = 4 * (size - 1) + 1;
+    checked.table = ReflectionTable(direct, size);
+    checked.error = ReflectionTableError(checked.table, direct, samples);
+  }
+  if (checked.error > kTableErrorLimit) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "%.3g (relative), above the limit %g", checked.error,
+                  kTableErrorLimit);
+    throw Error(what + ": the XYZ table differs from direct spectral evaluation by " + buf +
+                "; render it by direct spectral evaluation");
+  }
+  return checked;
 }
 
 Lighting LightingFromName(const std::string& name) {

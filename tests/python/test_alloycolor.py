@@ -112,7 +112,7 @@ def test_many_compositions_table_within_tolerance(au_ag):
 # ---- the command line as a reference ---------------------------------------------------------
 
 def test_colour_of_paper_model_equals_command_line(binary, au_ag):
-    cli = run_json(binary, "color", "--data", "Au-Ag", "--x", "0.3,0.75", "--angle", "30")
+    cli = run_json(binary, "color", "--data", "Au-Ag", "--method", "paper", "--x", "0.3,0.75", "--angle", "30")
     model = ac.fit(au_ag, "paper")
     c = model.color([0.3, 0.75], angle_deg=30, sigma=True)
     for i, r in enumerate(cli["results"]):
@@ -153,7 +153,7 @@ def test_smooth_fit_in_the_space_given_equals_command_line(binary, au_ag, tmp_pa
     lam = np.linspace(380, 780, 41)
     np.testing.assert_allclose(ac.load_model(cli_model).nk([0.3, 0.85], lam),
                                model.nk([0.3, 0.85], lam), atol=1e-9)
-    with pytest.raises(ac.Error, match="--space"):
+    with pytest.raises(ac.Error, match="^space: 'magic' is none of eps, log_eps$"):
         ac.fit(au_ag, "smooth", space="magic")
 
 
@@ -347,3 +347,48 @@ def test_illuminants_and_observers_broadcast(au_ag):
             one = model.color(0.6, illuminant=ill, observer=obs)
             np.testing.assert_array_equal(c["xyz"][i, j], one["xyz"])
     assert c["xyz"][0, 0, 1] != c["xyz"][0, 1, 1]
+
+
+# ---- replicates ----------------------------------------------------------------------------
+
+def test_replicates_load_fit_and_validate(au_ag, tmp_path):
+    # Two films at x = 0.5: the bundled one and a copy with k 12 % higher. The data set keeps
+    # both; the interpolating methods pass through their mean; leave-one-out holds out both
+    # films together, one result row each; a film is held out alone by its file name.
+    samples = []
+    for s in au_ag.samples:
+        if round(s["x_atomic"], 6) not in (0.0, 0.2, 0.5, 0.8, 1.0):
+            continue
+        samples.append({"x": s["x_atomic"], "file": s["path"]})
+        if abs(s["x_atomic"] - 0.5) < 1e-9:
+            sp = s["spectrum"]
+            rows = ["lambda_nm,n,k"] + ["%.17g,%.17g,%.17g" % (l, n, 1.12 * k)
+                                            for l, n, k in zip(sp.lambda_nm, sp.n, sp.k)]
+            (tmp_path / "film2.csv").write_text("\n".join(rows) + "\n")
+            samples.append({"x": 0.5, "file": "film2.csv"})
+    (tmp_path / "dataset.json").write_text(json.dumps(
+        {"system": {"a": "Au", "b": "Ag"}, "composition": "atomic_fraction_a",
+         "samples": samples}))
+    data = ac.Dataset(tmp_path)
+    assert len(data) == 6
+    assert list(data.x_atomic).count(0.5) == 2
+    assert data.samples[3]["file"] == "film2.csv"
+
+    first, second = [s["spectrum"] for s in data.samples if s["x_atomic"] == 0.5]
+    eps = (first.n + 1j * first.k) ** 2 / 2 + (second.n + 1j * second.k) ** 2 / 2
+    model = ac.fit(data, "eps-linear")
+    assert len(model.to_json()["training_samples"]) == 6
+    np.testing.assert_allclose(model.permittivity(0.5, first.lambda_nm[10:-10]),
+                               eps[10:-10], rtol=1e-9)
+    smooth = ac.fit(data, "smooth")
+    assert smooth.color(0.5, sigma=True)["sigma"] > 0
+
+    loo = ac.validate(data, methods=["eps-linear"], angles_deg=[0])
+    assert len(loo["holdouts"]) == 4
+    assert [h["file"] for h in loo["holdouts"] if h["x"] == 0.5][1] == "film2.csv"
+    assert len({h["split"] for h in loo["holdouts"]}) == 3
+    one = ac.validate(data, methods=["eps-linear"], holdout=["film2.csv"], angles_deg=[0])
+    assert [h["file"] for h in one["holdouts"]] == ["film2.csv"]
+    assert one["splits"][0]["train_x"].count(0.5) == 1
+    both = ac.validate(data, methods=["eps-linear"], holdout=[0.5], angles_deg=[0])
+    assert len(both["holdouts"]) == 2

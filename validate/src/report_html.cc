@@ -198,10 +198,12 @@ std::string XLabel(const ValidationReport& report, const HoldoutResult& h) {
          report.element_a + ")";
 }
 
-// The held-out composition in a table row: x, and the manifest's weight fraction if given.
+// The held-out composition in a table row: x, the manifest's weight fraction if given, and
+// for a replicate (one of several samples at its composition) its file.
 std::string RowLabel(const ValidationReport& report, const HoldoutResult& h) {
   return Num(h.x_atomic, "%.4g") +
-         (WeightManifest(report) ? " <small>(" + Num(h.x_given, "%.4g") + " wt)</small>" : "");
+         (WeightManifest(report) ? " <small>(" + Num(h.x_given, "%.4g") + " wt)</small>" : "") +
+         (h.replicate ? " <small>" + EscapeXml(h.file) + "</small>" : "");
 }
 
 void WriteVerdict(const ValidationReport& report, std::ostringstream& html) {
@@ -570,6 +572,24 @@ std::string ValidationHtml(const ValidationReport& report) {
     const SplitResult& split = report.splits[s];
     html << "<h3>Trained on x = " << XList(split.train_x)
          << "; held out x = " << XList(split.holdout_x) << "</h3>";
+    bool replicates = false;
+    for (const HoldoutResult& h : report.holdouts) {
+      replicates = replicates || (h.split == static_cast<int>(s) && h.replicate);
+    }
+    if (replicates) {
+      // Replicates share x: their files tell them apart.
+      html << "<p class=\"meta\">Held out: ";
+      for (size_t i = 0; i < split.holdout_files.size(); ++i) {
+        html << (i ? ", " : "") << EscapeXml(split.holdout_files[i]) << " (x = "
+             << Num(split.holdout_x[i], "%.4g") << ")";
+      }
+      html << ". Trained on: ";
+      for (size_t i = 0; i < split.train_files.size(); ++i) {
+        html << (i ? ", " : "") << EscapeXml(split.train_files[i]) << " (x = "
+             << Num(split.train_x[i], "%.4g") << ")";
+      }
+      html << ".</p>";
+    }
     for (const auto& [method, error] : split.errors) {
       html << "<p class=\"note\">" << EscapeXml(method) << " could not be built: " << EscapeXml(error)
            << "</p>";

@@ -32,7 +32,10 @@ nlohmann::json ValidationJson(const ValidationReport& report) {
   doc["delta_e00_available"] = colour;
   nlohmann::json splits = nlohmann::json::array();
   for (const SplitResult& s : report.splits) {
-    nlohmann::json split = {{"train_x", s.train_x}, {"holdout_x", s.holdout_x}};
+    nlohmann::json split = {{"train_x", s.train_x},
+                             {"holdout_x", s.holdout_x},
+                             {"train_files", s.train_files},
+                             {"holdout_files", s.holdout_files}};
     if (!s.errors.empty()) split["errors"] = s.errors;
     split["warnings"] = s.warnings;
     split["choices"] = s.choices;
@@ -73,6 +76,7 @@ nlohmann::json ValidationJson(const ValidationReport& report) {
                            {"x_given", h.x_given},
                            {"file", h.file},
                            {"path", h.path},
+                           {"replicate", h.replicate},
                            {"split", h.split},
                            {"train_x", report.splits[h.split].train_x},
                            {"metric_range", h.metric_range},

@@ -17,6 +17,7 @@
 #include "alloycolor/core/parallel.h"
 #include "alloycolor/core/grid.h"
 #include "alloycolor/core/spectrum.h"
+#include "alloycolor/core/text.h"
 #include "alloycolor/core/units.h"
 #include "alloycolor/model/optics.h"
 #include "report_metrics.h"
@@ -70,12 +71,31 @@ Spectra SpectraOf(const std::vector<std::complex<double>>& index) {
   return s;
 }
 
-// The composition with atomic fraction x as a sample of the data set.
-const Sample& SampleAt(const Dataset& dataset, double x) {
-  for (const Sample& s : dataset.samples) {
-    if (std::abs(s.x_atomic - x) <= kSameX) return s;
+std::string Join(const std::vector<std::string>& parts) {
+  std::string joined;
+  for (const std::string& p : parts) joined += (joined.empty() ? "" : ", ") + p;
+  return joined;
+}
+
+// The data set without the samples of `held` (indices).
+Dataset WithoutSampleIndices(const Dataset& dataset, const SampleSplit& held) {
+  Dataset training = dataset;
+  training.samples.clear();
+  for (size_t i = 0; i < dataset.samples.size(); ++i) {
+    if (std::find(held.begin(), held.end(), i) == held.end()) {
+      training.samples.push_back(dataset.samples[i]);
+    }
   }
-  throw Error("no sample at x = " + Num(x));
+  return training;
+}
+
+void RequireThreeCompositions(const Dataset& dataset) {
+  const size_t compositions = DistinctCompositions(dataset).size();
+  if (compositions < 3) {
+    throw Error(dataset.manifest_path + " has samples at " + std::to_string(compositions) +
+                (compositions == 1 ? " composition" : " compositions") +
+                "; validation needs at least one interior composition besides the two ends");
+  }
 }
 
 // Wavelengths for the tau, m* curves: 450, 550, 650 nm when the training data cover them,
@@ -125,12 +145,16 @@ void FillDrudeCurves(const AlloyModel& model, const std::string& method, const A
   }
 }
 
-SplitResult PrepareSplit(const Dataset& dataset, const std::vector<double>& holdout_x) {
+SplitResult PrepareSplit(const Dataset& dataset, const SampleSplit& held) {
   SplitResult split;
-  split.holdout_x = holdout_x;
-  std::sort(split.holdout_x.begin(), split.holdout_x.end());
-  const Dataset training = WithoutSamples(dataset, holdout_x);
-  for (const Sample& s : training.samples) split.train_x.push_back(s.x_atomic);
+  std::vector<char> is_held(dataset.samples.size(), 0);
+  for (size_t i : held) is_held.at(i) = 1;
+  for (size_t i = 0; i < dataset.samples.size(); ++i) {
+    const Sample& s = dataset.samples[i];
+    (is_held[i] ? split.holdout_x : split.train_x).push_back(s.x_atomic);
+    (is_held[i] ? split.holdout_files : split.train_files).push_back(s.file);
+  }
+  const Dataset training = WithoutSampleIndices(dataset, held);
   WavelengthRange range;
   try {
     range = CommonRange(training);
@@ -144,14 +168,13 @@ SplitResult PrepareSplit(const Dataset& dataset, const std::vector<double>& hold
     DrudeCurve curve;
     curve.lambda_nm = lambda;
     for (int i = 0; i <= 100; ++i) curve.x.push_back(x_lo + (x_hi - x_lo) * i / 100.0);
-    for (const Sample& s : dataset.samples) {
+    for (size_t i = 0; i < dataset.samples.size(); ++i) {
+      const Sample& s = dataset.samples[i];
       double tau, mass;
       MeasuredTauMass(s.nk, s.x_atomic, lambda, dataset.system, &tau, &mass);
-      const bool held = std::any_of(split.holdout_x.begin(), split.holdout_x.end(),
-                                    [&](double x) { return std::abs(x - s.x_atomic) <= kSameX; });
-      (held ? curve.holdout_x : curve.train_x).push_back(s.x_atomic);
-      (held ? curve.holdout_tau_fs : curve.train_tau_fs).push_back(tau);
-      (held ? curve.holdout_mass : curve.train_mass).push_back(mass);
+      (is_held[i] ? curve.holdout_x : curve.train_x).push_back(s.x_atomic);
+      (is_held[i] ? curve.holdout_tau_fs : curve.train_tau_fs).push_back(tau);
+      (is_held[i] ? curve.holdout_mass : curve.train_mass).push_back(mass);
     }
     split.drude.push_back(std::move(curve));
   }
@@ -213,8 +236,78 @@ MethodResult Evaluate(const AlloyModel& model, const Sample& sample,
 
 }  // namespace
 
+std::vector<SampleSplit> LeaveOneOutSplits(const Dataset& dataset) {
+  RequireThreeCompositions(dataset);
+  const std::vector<double> xs = DistinctCompositions(dataset);
+  std::vector<SampleSplit> splits;
+  for (size_t c = 1; c + 1 < xs.size(); ++c) splits.push_back(SplitAtCompositions(dataset, {xs[c]}));
+  return splits;
+}
+
+SampleSplit SplitAtCompositions(const Dataset& dataset, const std::vector<double>& x_atomic) {
+  SampleSplit split;
+  for (size_t i = 0; i < dataset.samples.size(); ++i) {
+    const double x = dataset.samples[i].x_atomic;
+    if (std::any_of(x_atomic.begin(), x_atomic.end(),
+                    [x](double held) { return std::abs(held - x) <= kSameX; })) {
+      split.push_back(i);
+    }
+  }
+  return split;
+}
+
+SampleSplit HoldoutSplit(const Dataset& dataset, const std::vector<std::string>& names) {
+  RequireThreeCompositions(dataset);
+  const auto list = [&dataset] {
+    std::string s;
+    for (const Sample& sample : dataset.samples) {
+      s += (s.empty() ? "" : ", ") + Num(sample.x_given);
+      // Replicates by their files, which tell them apart.
+      if (SamplesAtComposition(dataset, sample.x_atomic).size() > 1) s += " (" + sample.file + ")";
+    }
+    return s;
+  };
+  SampleSplit split;
+  const auto add = [&split](size_t i) {
+    if (std::find(split.begin(), split.end(), i) == split.end()) split.push_back(i);
+  };
+  for (const std::string& name : names) {
+    if (name.empty()) throw Error("empty sample or composition");
+    if (const Sample* s = FindSampleByFile(dataset, name)) {
+      add(static_cast<size_t>(s - dataset.samples.data()));
+      continue;
+    }
+    const Sample* match = nullptr;
+    try {
+      match = FindSample(dataset, ParseComposition(name, dataset.system));
+    } catch (const Error&) {
+      // Neither a file of the data set nor a composition.
+    }
+    if (match == nullptr) {
+      throw Error("no sample file or composition " + Quote(name, 60) + " in " +
+                  dataset.manifest_path + " (samples at " + list() + ")");
+    }
+    for (size_t i : SplitAtCompositions(dataset, {match->x_atomic})) add(i);
+  }
+  if (split.empty()) throw Error("no sample or composition given");
+  std::sort(split.begin(), split.end());
+  const std::vector<double> xs = DistinctCompositions(dataset);
+  for (double end : {xs.front(), xs.back()}) {
+    const SampleSplit at_end = SplitAtCompositions(dataset, {end});
+    if (std::all_of(at_end.begin(), at_end.end(), [&split](size_t i) {
+          return std::find(split.begin(), split.end(), i) != split.end();
+        })) {
+      const Sample& s = dataset.samples[at_end.front()];
+      throw Error(Num(s.x_given) + " is an end sample (" + s.file +
+                  "); every method would have to extrapolate to predict it, so it is kept "
+                  "for training: hold out interior samples (or one replicate of an end) only");
+    }
+  }
+  return split;
+}
+
 ValidationReport ComputeValidation(const Dataset& dataset,
-                                   const std::vector<std::vector<double>>& splits,
+                                   const std::vector<SampleSplit>& splits,
                                    const color::Colorimeter& colorimeter,
                                    const ValidationOptions& options,
                                    const ProgressCallback& progress) {
@@ -235,14 +328,26 @@ ValidationReport ComputeValidation(const Dataset& dataset,
 
   // Held-out samples and their measured colour.
   for (size_t s = 0; s < splits.size(); ++s) {
+    for (size_t i : splits[s]) {
+      if (i >= dataset.samples.size()) {
+        throw Error("split " + std::to_string(s) + ": no sample " + std::to_string(i) + " in " +
+                    dataset.manifest_path);
+      }
+    }
+    if (splits[s].empty()) throw Error("split " + std::to_string(s) + " holds out no sample");
     report.splits.push_back(PrepareSplit(dataset, splits[s]));
-    for (double x : report.splits.back().holdout_x) {
-      const Sample& sample = SampleAt(dataset, x);
+    SampleSplit held = splits[s];
+    std::sort(held.begin(), held.end());
+    held.erase(std::unique(held.begin(), held.end()), held.end());
+    for (size_t i : held) {
+      const Sample& sample = dataset.samples[i];
       HoldoutResult h;
       h.x_atomic = sample.x_atomic;
       h.x_given = sample.x_given;
       h.file = sample.file;
       h.path = sample.path;
+      h.sample = static_cast<int>(i);
+      h.replicate = SamplesAtComposition(dataset, sample.x_atomic).size() > 1;
       h.split = static_cast<int>(s);
       try {
         const Colour c = ColourAtAngles(colorimeter, color::IndexOnGrid(colorimeter, sample.nk),
@@ -275,7 +380,7 @@ ValidationReport ComputeValidation(const Dataset& dataset,
       SplitResult& split = report.splits[s];
       std::unique_ptr<AlloyModel> model;
       try {
-        model = options.build(method, WithoutSamples(dataset, split.holdout_x));
+        model = options.build(method, WithoutSampleIndices(dataset, splits[s]));
       } catch (const Error& e) {
         errors[s] = e.what();
       }
@@ -288,7 +393,7 @@ ValidationReport ComputeValidation(const Dataset& dataset,
         FillDrudeCurves(*model, method, dataset.system, &split.drude);
         for (size_t h : holdouts_of[s]) {
           HoldoutResult& holdout = report.holdouts[h];
-          const Sample& sample = SampleAt(dataset, holdout.x_atomic);
+          const Sample& sample = dataset.samples[holdout.sample];
           try {
             holdout.results[method] = Evaluate(*model, sample, colorimeter, options, &holdout);
           } catch (const Error& e) {
@@ -301,6 +406,10 @@ ValidationReport ComputeValidation(const Dataset& dataset,
         progress("validate [" + std::to_string(++done) + "/" + std::to_string(total) + "] " +
                  method + ", trained on " + std::to_string(split.train_x.size()) +
                  " samples, held out x = " + XList(split.holdout_x) +
+                 (std::any_of(holdouts_of[s].begin(), holdouts_of[s].end(),
+                              [&](size_t h) { return report.holdouts[h].replicate; })
+                      ? " (" + Join(split.holdout_files) + ")"
+                      : std::string()) +
                  (errors[s].empty() ? "" : ": failed: " + errors[s]));
       }
     });

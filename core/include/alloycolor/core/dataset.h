@@ -11,6 +11,9 @@
 //  - per sample, "n_file" and "k_file" instead of "file": refractiveindex.info files
 //    holding `tabulated n` and `tabulated k` alone, paired (ReadNkPair).
 // Unknown keys at the top level and in samples are warnings; in "elements", errors.
+// Replicates, distinct files at the same x (two films of one alloy), are welcome: each stays
+// a sample of its own. The same file (or the same n, k under two names) twice is refused,
+// as are two x closer than 1e-6 but not equal.
 #ifndef ALLOYCOLOR_CORE_DATASET_H_
 #define ALLOYCOLOR_CORE_DATASET_H_
 
@@ -40,7 +43,9 @@ struct Dataset {
   std::string name;
   AlloySystem system;
   std::string composition;      // "atomic_fraction_a" or "weight_fraction_a"
-  std::vector<Sample> samples;  // sorted by x_atomic, at most one per composition
+  // Sorted by x_atomic (stable: the replicates of a composition adjacent, in the
+  // manifest's order).
+  std::vector<Sample> samples;
   std::vector<std::string> warnings;
 };
 
@@ -49,14 +54,31 @@ Dataset LoadDataset(const std::string& dir_or_manifest);
 
 // The sample at composition x: the one whose atomic fraction is x (within 1e-9) or,
 // failing that, whose number in the manifest is (a weight fraction in a weight-fraction
-// manifest); null when there is none.
+// manifest); the first of its replicates; null when there is none.
 const Sample* FindSample(const Dataset& dataset, double x);
+
+// The sample whose file is `file`: as written in the manifest (Sample::file, or its "file"
+// alone when columns were chosen), its resolved path, or its file name when that names
+// one sample only; null when none (or several) match.
+const Sample* FindSampleByFile(const Dataset& dataset, const std::string& file);
 
 // The samples whose x_atomic is not within 1e-9 of any of exclude_x (atomic fractions).
 Dataset WithoutSamples(const Dataset& dataset, const std::vector<double>& exclude_x);
 
-// The samples' compositions (atomic fraction), each once, increasing.
+// The samples' compositions (atomic fraction), each once, increasing: one per group of
+// replicates.
 std::vector<double> DistinctCompositions(const Dataset& dataset);
+
+// The samples at composition x_atomic (within 1e-9): its replicates, in the data set's
+// order; empty when there is none.
+std::vector<const Sample*> SamplesAtComposition(const Dataset& dataset, double x_atomic);
+
+// The replicates' mean: eps = N^2 (eq. 9, 10) of each, interpolated linearly in n, k onto
+// the union of their wavelengths inside the range all of them cover, averaged, and turned
+// back into n, k >= 0 (eq. 13, 14). One spectrum is returned unchanged. The source names
+// every replicate ("mean of a.csv, b.csv"). Throws Error when there is none or they
+// share no wavelength range.
+NkSpectrum MeanSpectrum(const std::vector<const Sample*>& replicates);
 
 }  // namespace alloycolor
 

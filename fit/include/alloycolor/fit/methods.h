@@ -68,26 +68,26 @@ struct FitSettings {
 // its leave-one-composition-out folds (those of its prediction error, see BuildModel: each
 // interior composition held out in turn, 20 at most), and scored on the folds' held-out
 // samples as `validate` scores them (mean CIEDE2000 at normal incidence, or reflectance RMS
-// for data without colour); the simplest method whose mean lies within 10 % of the lowest,
-// or above it by no more than one standard error of their fold-by-fold differences (from
-// two folds), wins (simplest first: eps-pchip, eps-linear, eps-spline, paper, smooth,
-// physical), since leave-one-out with few samples flatters the flexible methods. The
+// for data without colour); the first method in the registry's order of preference
+// (MethodTraits::auto_rank: smooth, eps-pchip, eps-linear, eps-spline, paper, physical)
+// whose mean lies within 10 % of the lowest, or above it by no more than one standard error
+// of their fold-by-fold differences (from two folds), wins: a rival displaces the default
+// regression only on evidence the folds can give. The folds cannot hold out the two end
+// samples: among the methods the rule accepts, one that misses an end sample by more than
+// kInSampleMissDe00 gives way to one that does not. The
 // physical model is not scored where its folds cannot fit its composition degree (three
 // compositions: degree 2, its folds' two samples only a line). With three compositions
 // the one fold predicts the middle from the ends, where every interpolation is a straight
 // line, so it cannot compare the curves delivered: smooth is chosen (unless it failed).
-// With fewer, nothing can be held out and eps-pchip is chosen (with two samples every
+// With fewer, nothing can be held out and the first in order is chosen (with two samples every
 // interpolation is the line). The chosen model carries the table (FitSummary::selection).
 inline constexpr const char* kAutoMethod = "auto";
 std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings& settings);
 
 // The calibration of a prediction error's one-sigma colour uncertainty from its folds'
 // log ratios of observed to uncalibrated predicted CIEDE2000 (docs/model-format.md): the
-// ratios taken as log-normal, their variance pooled with a prior spread of 0.6 worth two
-// folds and widened by (1 + 1/f); a new ratio's law is then Student's t (1 + f degrees of
-// freedom) and the factor puts 68 % of new ratios inside one sigma; where that leaves fewer
-// than 95 % inside two (a wide spread), the geometric mean of that factor and the one that
-// puts 95 % inside two. 1 for no folds; clamped to 1e-3..1e3.
+// factor that makes the ratios' root mean square 1, as the one-sigma is the draws' RMS
+// colour difference. 1 for no folds; clamped to 1e-3..1e3.
 double SigmaCalibration(const std::vector<double>& log_ratios);
 
 // Attaches the built-in methods' builders to their registry entries (once; BuildModel does

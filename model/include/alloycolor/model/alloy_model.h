@@ -42,9 +42,9 @@ struct MethodScore {
   double mean = 0;    // mean of the metric over the folds
   double max = 0;     // worst fold
   int folds = 0;
-  // The end compositions' samples scored by the model's own (in-sample) error, which no
-  // fold can hold out; counted in mean and max.
-  int ends = 0;
+  // The model's own (in-sample) error at the end compositions, which no fold can hold
+  // out, in the folds' metric: the larger of the two. Not in mean and max.
+  double end_miss = 0;
   std::string error;  // non-empty: the candidate could not be scored (why)
 };
 struct MethodSelection {
@@ -101,8 +101,8 @@ struct PredictionError {
   // allow (docs/model-format.md):
   //  - misfit[i][j]: (measured eps - model eps) / |model eps| at compositions[i] (the mean
   //    of the samples there) and misfit_lambda_nm[j]; between compositions interpolated
-  //    linearly, times one sign (+1, -1 in turn) per draw, so that half the draws at a
-  //    training composition land on the measurement the model misses;
+  //    linearly and added to every draw, so that at a training composition the draws land
+  //    on the measurement the model misses (the colour sigma there is at least the miss);
   //  - scatter[r][j]: a replicate sample's relative deviation from its composition's mean
   //    (times sqrt(n / (n - 1))), taken in turn by the draws with a sign of their own;
   //  - precision: a measurement's relative eps error (the resolution of the data's

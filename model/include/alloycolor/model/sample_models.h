@@ -14,7 +14,9 @@
 //    PCHIP stays between neighbouring samples; a natural spline can undershoot, and its
 //    eps2 is held at 0 where it would (a negative eps2 is an amplifying medium).
 //
-// Both interpolate each sample's n, k linearly in wavelength. Outside the samples' x range
+// Replicates (several samples at one composition) make one node there: their mean
+// (dataset.h MeanSpectrum, eps averaged), so the model passes between them.
+// All interpolate each node's n, k linearly in wavelength. Outside the samples' x range
 // they extrapolate linearly from the two nearest samples (the caller decides whether
 // that is allowed).
 #ifndef ALLOYCOLOR_MODEL_SAMPLE_MODELS_H_
@@ -33,8 +35,8 @@ class SampleModel : public AlloyModel {
  public:
   enum class Kind { kPaper, kEpsLinear, kEpsPchip, kEpsSpline };
 
-  // Throws Error when the data set has fewer than two samples or no common wavelength
-  // range.
+  // Throws Error when the data set has fewer than two compositions or no common
+  // wavelength range.
   SampleModel(Kind kind, const Dataset& dataset);
   SampleModel(Kind kind, const nlohmann::json& doc, const std::string& source);
 

@@ -48,6 +48,7 @@
 #include <vector>
 
 #include "alloycolor/color/colorimetry.h"
+#include "alloycolor/model/alloy_model.h"
 #include "alloycolor/render/image.h"
 #include "alloycolor/render/shading.h"
 
@@ -69,6 +70,9 @@ std::string ShapeName(Shape shape);
 enum class Background { kTransparent, kBackdrop };
 // "transparent" or "backdrop".
 Background BackgroundFromName(const std::string& name);
+// The background unless one is chosen: transparent in uniform light (the object's colour
+// alone), the backdrop in studio light.
+Background DefaultBackground(Lighting lighting);
 
 struct RenderOptions {
   Shape shape = Shape::kSphere;
@@ -91,6 +95,9 @@ struct NormalMap {
 };
 // Throws Error for a size outside 1-kMaxTileSize.
 NormalMap TraceNormals(Shape shape, int size);
+
+// How a picture names an alloy's tile (its title, its errors): "Au-Ag x=0.75".
+std::string AlloyLabel(const AlloyModel& model, double x_atomic);
 
 namespace internal {
 struct TilePlan;

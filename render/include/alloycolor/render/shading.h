@@ -112,6 +112,24 @@ class ReflectionTable {
 double ReflectionTableError(const ReflectionTable& table, const DirectReflection& direct,
                             int samples);
 
+// The accuracy guard every face applies before shading from a table: the table is refined
+// (size 4 (size - 1) + 1, from kReflectionTableSize up to kMaxReflectionTableSize) until its
+// ReflectionTableError over kTableCheckSamples values of mu (kRoughTableCheckSamples for a
+// rough surface, whose direct evaluation is slow) is at most kTableErrorLimit. None of the
+// bundled metals needs more than the first size.
+inline constexpr int kTableCheckSamples = 500;
+inline constexpr int kRoughTableCheckSamples = 24;
+inline constexpr double kTableErrorLimit = 1e-4;
+inline constexpr int kMaxReflectionTableSize = 65537;
+
+struct CheckedTable {
+  ReflectionTable table;
+  double error;  // its ReflectionTableError
+};
+// Throws Error naming `what` (the material) when even the largest table misses the limit:
+// such a material is rendered by direct spectral evaluation instead.
+CheckedTable GuardedTable(const DirectReflection& direct, const std::string& what);
+
 // Lighting of the scene.
 enum class Lighting { kUniform, kStudio };
 // "uniform" or "studio"; throws Error naming the accepted names otherwise.

@@ -1,6 +1,7 @@
 // Held-out validation as a library: for each split of a data set into training and
 // held-out samples, every method is built on the training samples only and predicts each
-// held-out composition; plain structs in, plain structs out, so the command line, the
+// held-out sample (one result row per sample: replicates, several samples at one
+// composition, each have their own); plain structs in, plain structs out, so the command line, the
 // report writers and the Python module all see the same numbers. The builder is passed in
 // (ValidationOptions::build, normally fit::SharedFitBuilder), so this library needs no solver.
 //
@@ -26,6 +27,7 @@
 #define ALLOYCOLOR_VALIDATE_VALIDATION_H_
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -68,6 +70,8 @@ struct MethodResult {
 struct HoldoutResult {
   double x_atomic = 0, x_given = 0;
   std::string file, path;
+  int sample = 0;          // index in the data set's samples
+  bool replicate = false;  // another sample of the data set shares its composition
   int split = 0;
   // Measured, on the metric wavelengths (those of the first method that could be
   // evaluated; every method trained on a split shares them).
@@ -91,7 +95,9 @@ struct DrudeCurve {
 };
 
 struct SplitResult {
+  // Per sample, in the data set's order (a composition repeats with its replicates).
   std::vector<double> train_x, holdout_x;
+  std::vector<std::string> train_files, holdout_files;
   std::map<std::string, std::string> errors;                 // method -> why it could not be built
   std::map<std::string, std::vector<std::string>> warnings;  // method -> its warnings
   // method -> its model against its own training samples (AlloyModel::in_sample)
@@ -118,12 +124,28 @@ struct ValidationReport {
   std::vector<HoldoutResult> holdouts;
 };
 
-// Runs every method on every split (each split: the compositions held out, atomic
-// fractions of samples of the data set). A method that fails on a split is recorded
+// One split: the held-out samples, as indices into dataset.samples.
+using SampleSplit = std::vector<size_t>;
+
+// Leave one composition out: each interior composition in turn, all of its replicates
+// held out together (a replicate left in would predict its twin). Throws Error when the
+// data set has fewer than three compositions.
+std::vector<SampleSplit> LeaveOneOutSplits(const Dataset& dataset);
+
+// One split from names: each the file of a sample (FindSampleByFile: that replicate alone)
+// or a composition as ParseComposition reads it, or the manifest's number for it (every
+// replicate there). Throws Error naming what matches no sample, and when the split would
+// leave an end composition without a sample (every method would have to extrapolate).
+SampleSplit HoldoutSplit(const Dataset& dataset, const std::vector<std::string>& names);
+
+// The samples at these compositions (atomic fractions, within 1e-9), every replicate.
+SampleSplit SplitAtCompositions(const Dataset& dataset, const std::vector<double>& x_atomic);
+
+// Runs every method on every split. A method that fails on a split is recorded
 // there; a method that fails on every split (an unknown name) throws its first error
 // before the other methods' long work. Progress goes to `progress` (may be empty).
 ValidationReport ComputeValidation(const Dataset& dataset,
-                                   const std::vector<std::vector<double>>& splits,
+                                   const std::vector<SampleSplit>& splits,
                                    const color::Colorimeter& colorimeter,
                                    const ValidationOptions& options,
                                    const ProgressCallback& progress);

@@ -282,4 +282,26 @@ void CheckComposition(const AlloyModel& model, double x_atomic, bool extrapolate
   if (!extrapolate) model.CheckInRange(x_atomic);
 }
 
+std::string DescribeComposition(double x_atomic, const AlloySystem& system) {
+  char text[160];
+  const std::string a = system.a.symbol;
+  const double w = WeightFromAtomicFraction(x_atomic, system);
+  std::snprintf(text, sizeof text, "%.4f (%.2f at%% %s, %.2f wt%% %s", x_atomic, 100 * x_atomic,
+                a.c_str(), 100 * w, a.c_str());
+  std::string out = text;
+  if (IsGoldAlloy(system)) {
+    std::snprintf(text, sizeof text, ", %.2f k", KaratFromAtomicFraction(x_atomic, system));
+    out += text;
+  }
+  return out + ")";
+}
+
+nlohmann::json CompositionJson(double x_atomic, const AlloySystem& system) {
+  nlohmann::json out = {{"x_atomic", x_atomic},
+                        {"at_percent", 100 * x_atomic},
+                        {"wt_percent", 100 * WeightFromAtomicFraction(x_atomic, system)}};
+  if (IsGoldAlloy(system)) out["karat"] = KaratFromAtomicFraction(x_atomic, system);
+  return out;
+}
+
 }  // namespace alloycolor::app

@@ -7,7 +7,7 @@
 //    compositions and the smallest CIEDE2000 taken (resolution 0.025 at%, the round trip's
 //    0.05 at% bar; no error bar, no other minima).
 //  - MatchColour: color::MatchColour, one call per target as `alloycolor match` makes it
-//    (sweep table built, 1001-point scan, golden-section refinement to 1e-10, every local
+//    (sweep table built, 1001-point scan, Brent refinement to 1e-10, every local
 //    minimum), with the one-sigma (64 uncertainty draws) and without.
 //  - MatcherFind: one color::ColourMatcher prepared once, Find per target without the
 //    one-sigma (as Python's model.match(labs, sigma=False) runs for many targets).

@@ -12,7 +12,7 @@
 namespace alloycolor::color {
 namespace {
 
-constexpr double kRefineTolerance = 1e-10;  // golden-section bracket, atomic fraction
+constexpr double kRefineTolerance = 1e-10;  // Brent's bracket, atomic fraction
 constexpr double kBisectTolerance = 1e-9;   // tolerance window edges
 // Two refined minima closer than this (atomic fraction) are one.
 constexpr double kSameMinimum = 1e-6;
@@ -26,32 +26,59 @@ std::string ModelName(const AlloyModel& model) {
          model.method() + " model";
 }
 
-// The minimum of f on [lo, hi] by golden-section search; *f_min receives f there.
-double GoldenSection(const std::function<double(double)>& f, double lo, double hi,
-                     double* f_min) {
-  const double ratio = (std::sqrt(5.0) - 1.0) / 2.0;
-  double c = hi - ratio * (hi - lo), d = lo + ratio * (hi - lo);
-  double fc = f(c), fd = f(d);
-  while (hi - lo > kRefineTolerance) {
-    if (fc <= fd) {
-      hi = d;
-      d = c;
-      fd = fc;
-      c = hi - ratio * (hi - lo);
-      fc = f(c);
+// The minimum of f on [lo, hi] by Brent's method (parabolic interpolation safeguarded by
+// golden-section steps; Brent 1973, ch. 5), to kRefineTolerance in x; the ends of the
+// bracket count too, so that a minimum at the model's range is found there. *f_min
+// receives f at the minimum.
+double BrentMinimum(const std::function<double(double)>& f, double lo, double hi,
+                    double* f_min) {
+  constexpr double kGolden = 0.3819660112501051;  // (3 - sqrt 5) / 2
+  double a = lo, b = hi;
+  double x = a + kGolden * (b - a), w = x, v = x;
+  double fx = f(x), fw = fx, fv = fx;
+  double d = 0, e = 0;
+  for (int iteration = 0; iteration < 200; ++iteration) {
+    const double m = 0.5 * (a + b);
+    const double tol = 1e-12 * std::abs(x) + kRefineTolerance / 3;
+    if (std::abs(x - m) <= 2 * tol - 0.5 * (b - a)) break;
+    bool golden = true;
+    if (std::abs(e) > tol) {
+      const double r = (x - w) * (fx - fv);
+      double q = (x - v) * (fx - fw);
+      double p = (x - v) * q - (x - w) * r;
+      q = 2 * (q - r);
+      if (q > 0) p = -p; else q = -q;
+      const double e_before = e;
+      e = d;
+      if (std::abs(p) < std::abs(0.5 * q * e_before) && p > q * (a - x) && p < q * (b - x)) {
+        d = p / q;
+        const double u = x + d;
+        if (u - a < 2 * tol || b - u < 2 * tol) d = m >= x ? tol : -tol;
+        golden = false;
+      }
+    }
+    if (golden) {
+      e = x >= m ? a - x : b - x;
+      d = kGolden * e;
+    }
+    const double u = std::abs(d) >= tol ? x + d : x + (d > 0 ? tol : -tol);
+    const double fu = f(u);
+    if (fu <= fx) {
+      (u >= x ? a : b) = x;
+      v = w, fv = fw, w = x, fw = fx, x = u, fx = fu;
     } else {
-      lo = c;
-      c = d;
-      fc = fd;
-      d = lo + ratio * (hi - lo);
-      fd = f(d);
+      (u < x ? a : b) = u;
+      if (fu <= fw || w == x) {
+        v = w, fv = fw, w = u, fw = fu;
+      } else if (fu <= fv || v == x || v == w) {
+        v = u, fv = fu;
+      }
     }
   }
-  // The ends of the bracket count too: a minimum at the model's range lies there.
-  double best_x = fc <= fd ? c : d, best_f = std::min(fc, fd);
-  for (const double x : {lo, hi}) {
-    const double fx = f(x);
-    if (fx < best_f) best_x = x, best_f = fx;
+  double best_x = x, best_f = fx;
+  for (const double end : {lo, hi}) {
+    const double f_end = f(end);
+    if (f_end < best_f) best_x = end, best_f = f_end;
   }
   *f_min = best_f;
   return best_x;
@@ -78,10 +105,13 @@ std::vector<Match> Minimise(const std::vector<double>& scan_x, const std::vector
     const double lo = scan_x[i == 0 ? 0 : i - 1];
     const double hi = scan_x[std::min(i + 1, scan_x.size() - 1)];
     Match m;
-    double d = 0;
-    m.x_atomic = GoldenSection(exact, lo, hi, &d);
-    if (!std::isfinite(d)) continue;
-    m.de00 = d;  // the objective; the caller renames it for spectra
+    // The square of the distance: smooth where the target lies on the model's curve (the
+    // distance itself has a corner there), with the same minimum.
+    double d2 = 0;
+    m.x_atomic = BrentMinimum([&](double x) { const double d = exact(x); return d * d; }, lo,
+                              hi, &d2);
+    if (!std::isfinite(d2)) continue;
+    m.de00 = std::sqrt(d2);  // the objective; the caller renames it for spectra
     found.push_back(m);
   }
   if (found.empty()) throw Error(what + ": the distance to the target is not finite anywhere");

@@ -6,8 +6,8 @@
 //   d(x) = DeltaE00(target, Lab(x))   (or, for a spectrum, RMS_lambda [R(x) - R_target])
 // is scanned at `scan_points` evenly spaced compositions over the model's range (colour
 // read from a ColorSweep table, sweep.h), every local minimum of the scan (ends included)
-// is refined by golden-section search on the exact model (ColorSweep::ExactXYZ) inside
-// its two neighbouring scan intervals, and the minima within `margin` of the best are
+// is refined by Brent's method (on d^2, smooth where d has a corner) on the exact model
+// (ColorSweep::ExactXYZ) inside its two neighbouring scan intervals, and the minima within `margin` of the best are
 // returned, best first.
 //
 // Error bar. The colour speed v(x) = |dLab/dx| in CIEDE2000 units per unit of x is

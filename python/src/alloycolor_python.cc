@@ -29,6 +29,7 @@
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/io.h"
 #include "alloycolor/core/output.h"
+#include "alloycolor/core/parallel.h"
 #include "alloycolor/core/permittivity.h"
 #include "alloycolor/export/export_files.h"
 #include "alloycolor/export/spectral_export.h"
@@ -228,21 +229,28 @@ py::dict ModelMatch(const AlloyModel& model, const Array& lab_in, double angle_d
     options.target_sigma_de00 = target_sigma;
     options.margin = margin;
     options.with_sigma = sigma;
-    const color::ColourMatcher matcher(GetColorimeter(illuminant, observer_deg), model, options);
-    for (py::ssize_t i = 0; i < n; ++i) {
-      std::vector<color::Match> found =
-          matcher.Find({in[3 * i], in[3 * i + 1], in[3 * i + 2]});
-      const color::Match& best = found.front();
-      px[i] = best.x_atomic;
-      ps[i] = best.x_sigma;
-      pd[i] = best.de00;
-      pl[3 * i] = best.lab.L;
-      pl[3 * i + 1] = best.lab.a;
-      pl[3 * i + 2] = best.lab.b;
-      pr[i] = best.de00 <= color::kReachableDeltaE00;
-      pm[i] = static_cast<int>(found.size());
-      if (all_minima) every[i] = std::move(found);
-    }
+    const color::Colorimeter& colorimeter = GetColorimeter(illuminant, observer_deg);
+    // Without the one-sigma, blocks of targets over the cores, a matcher each (a matcher's
+    // sweep has scratch space, so one is not shared between threads).
+    constexpr int kBlock = 2048;
+    ParallelFor(static_cast<int>(n), kBlock, !sigma && n >= 2 * kBlock ? ThreadCount(0) : 1,
+                [&](int begin, int end) {
+      const color::ColourMatcher matcher(colorimeter, model, options);
+      for (py::ssize_t i = begin; i < end; ++i) {
+        std::vector<color::Match> found =
+            matcher.Find({in[3 * i], in[3 * i + 1], in[3 * i + 2]});
+        const color::Match& best = found.front();
+        px[i] = best.x_atomic;
+        ps[i] = best.x_sigma;
+        pd[i] = best.de00;
+        pl[3 * i] = best.lab.L;
+        pl[3 * i + 1] = best.lab.a;
+        pl[3 * i + 2] = best.lab.b;
+        pr[i] = best.de00 <= color::kReachableDeltaE00;
+        pm[i] = static_cast<int>(found.size());
+        if (all_minima) every[i] = std::move(found);
+      }
+    });
   }
   py::dict d;
   d["x"] = x;

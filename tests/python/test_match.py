@@ -78,3 +78,14 @@ def test_errors(model):
         model.tolerance(0.5, illuminants=["Q"])
     with pytest.raises(alloycolor.Error):
         model.tolerance(1.5)
+
+
+def test_many_targets_over_threads(model):
+    # 5000 targets without the one-sigma run in blocks over the cores: the same answers
+    # as one at a time.
+    xs = np.linspace(0.0, 1.0, 5000)
+    labs = model.color(xs, exact=True)["lab"]
+    out = model.match(labs, sigma=False)
+    np.testing.assert_allclose(out["x"], xs, atol=5e-4)
+    for i in (0, 2047, 2048, 4999):
+        assert float(model.match(labs[i], sigma=False)["x"]) == out["x"][i]

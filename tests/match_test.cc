@@ -19,7 +19,9 @@
 #include "alloycolor/core/composition.h"
 #include "alloycolor/core/dataset.h"
 #include "alloycolor/core/io.h"
+#include "alloycolor/core/units.h"
 #include "alloycolor/fit/methods.h"
+#include "alloycolor/model/sample_models.h"
 #include "test_util.h"
 
 namespace alloycolor {
@@ -114,6 +116,34 @@ TEST(Match, ListsEveryCompositionOfEqualColour) {
     }
   }
   EXPECT_GE(minima, 21);
+}
+
+// Colour that is not monotone in composition: eps = LinearEps(g(x)) with g rising from 0
+// to 0.95 at x = 0.5 and falling to 0.1 at x = 1, interpolated by PCHIP (affine in the
+// samples' values, so the model's colour depends on its interpolated g alone): every
+// colour between g = 0.1 and 0.95 is reached twice. Both are listed with de00 ~ 0 (checked
+// on the material-colour chain), the first at x0, the other beyond the peak.
+TEST(Match, ListsBothCompositionsOfARisingAndFallingColour) {
+  const std::string dir = testing::WriteSyntheticDataset(
+      {0.0, 0.25, 0.5, 0.75, 1.0}, [](double x, double lambda_nm) {
+        return testing::LinearEps(0.95 * std::sin(kPi * x) + 0.1 * x, lambda_nm);
+      });
+  const Dataset dataset = LoadDataset(dir);
+  const SampleModel model(SampleModel::Kind::kEpsPchip, dataset);
+  const color::Colorimeter colorimeter = color::Colorimeter::Load(DataDir(), "D65", 2);
+  for (const double x0 : {0.1, 0.3, 0.42}) {
+    const color::Lab target = ChainLab(colorimeter, model, x0, 0);
+    const std::vector<color::Match> matches = color::MatchColour(colorimeter, model, target);
+    std::vector<double> exact;
+    for (const color::Match& m : matches) {
+      if (m.de00 < 1e-6) exact.push_back(m.x_atomic);
+    }
+    ASSERT_EQ(exact.size(), 2u) << x0;
+    std::sort(exact.begin(), exact.end());
+    EXPECT_NEAR(exact[0], x0, 5e-4);
+    EXPECT_GT(exact[1], 0.5);
+    EXPECT_LT(color::DeltaE00(target, ChainLab(colorimeter, model, exact[1], 0)), 1e-6);
+  }
 }
 
 // A spectrum written as the model's reflectance at x0 (in percent, wavelength in um,

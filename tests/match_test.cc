@@ -321,6 +321,27 @@ TEST(MatchProgram, BadInputsGiveOneLineNamingTheCulprit) {
   EXPECT_EQ(testing::CountLines(tol.err), 1) << tol.err;
 }
 
+// validate reports the composition recovered from each held-out sample's colour, per
+// method, in report.json (per sample and summarised) and report.html.
+TEST(MatchValidate, ReportsTheRecoveredComposition) {
+  const std::string out = MakeTempDir() + "/report";
+  const RunResult run = RunProgram({"validate", "--data", "Au-Ag", "--methods", "smooth,eps-linear",
+                                    "--out", out, "--quiet", "--threads", "1"});
+  ASSERT_EQ(run.status, 0) << run.err;
+  EXPECT_NE(run.out.find("recovery_at%"), std::string::npos) << run.out;
+  const auto doc = nlohmann::json::parse(testing::ReadText(out + "/report.json"));
+  const auto& smooth = doc["composition_recovery"]["smooth"];
+  EXPECT_EQ(smooth["count"].get<int>(), 9);
+  EXPECT_LE(smooth["mean_abs_error_at_percent"].get<double>(), 0.3);
+  EXPECT_GE(smooth["within_2_sigma"].get<int>(), 8);
+  const auto& first = doc["holdouts"][0];
+  const auto& recovered = first["results"]["smooth"]["recovered"];
+  EXPECT_NEAR(recovered["error_at_percent"].get<double>(),
+              100 * (recovered["x_atomic"].get<double>() - first["x"].get<double>()), 1e-9);
+  EXPECT_NE(testing::ReadText(out + "/report.html").find("Composition recovered from colour"),
+            std::string::npos);
+}
+
 // Leave-one-out recovery of measured held-out samples: each interior composition of a data
 // set left out in turn, the model built on the rest, the sample's measured n,k matched on
 // its colour at normal incidence. The bars: Au-Ag mean error <= 0.3 at%; Cu-Zn

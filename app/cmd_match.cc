@@ -193,7 +193,7 @@ void RegisterMatch(CLI::App& app) {
       "composition's one-sigma (the model's colour uncertainty and --target-sigma over the "
       "rate at which colour changes with composition) and every other local minimum within "
       "--margin. Says so plainly when nothing comes within dE00 1.");
-  o->source.AddOptions(cmd, true);
+  o->source.AddOptions(cmd, true, /*with_extrapolate=*/false);
   cmd->add_option("--lab", o->lab, "Target CIELAB L,a,b (under --illuminant and --observer)");
   cmd->add_option("--xyz", o->xyz, "Target CIE XYZ X,Y,Z (a perfect reflector has Y = 1)");
   cmd->add_option("--hex", o->hex, "Target 8-bit sRGB '#rrggbb'");

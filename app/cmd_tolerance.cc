@@ -112,7 +112,7 @@ void RegisterTolerance(CLI::App& app) {
       "The composition window around --x within which the colour stays within --de (CIEDE2000) "
       "of its own at every angle and illuminant given, and how fast colour changes with "
       "composition there; clipped at the model's range, and says so.");
-  o->source.AddOptions(cmd, true);
+  o->source.AddOptions(cmd, true, /*with_extrapolate=*/false);
   cmd->add_option("--x", o->x_text, "Composition: 0.75, 75at%, 75wt% or 18k")->required();
   cmd->add_option("--de", o->de00, "Largest colour difference allowed (CIEDE2000)")
       ->check(NumberIn(1e-6, 100))

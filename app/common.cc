@@ -164,7 +164,7 @@ std::string MethodsHelp() {
   return text;
 }
 
-void ModelSource::AddOptions(CLI::App* cmd, bool with_data) {
+void ModelSource::AddOptions(CLI::App* cmd, bool with_data, bool with_extrapolate) {
   cmd->add_option("--model", model_path, "Fitted model file (JSON, from 'alloycolor fit')");
   if (with_data) {
     cmd->add_option("--data", data_dir,
@@ -174,8 +174,10 @@ void ModelSource::AddOptions(CLI::App* cmd, bool with_data) {
                     "Model built from --data: auto (chosen by leave-one-out), " + MethodsHelp())
         ->capture_default_str();
   }
-  cmd->add_flag("--extrapolate", extrapolate,
-                "Allow compositions outside the training samples' range");
+  if (with_extrapolate) {
+    cmd->add_flag("--extrapolate", extrapolate,
+                  "Allow compositions outside the training samples' range");
+  }
 }
 
 std::unique_ptr<AlloyModel> ModelSource::Load(bool quiet) const {

@@ -63,7 +63,8 @@ struct ModelSource {
   std::string data_dir;
   std::string method = "auto";
   bool extrapolate = false;
-  void AddOptions(CLI::App* cmd, bool with_data);
+  // with_extrapolate: offer --extrapolate (not for commands that keep to the model's range).
+  void AddOptions(CLI::App* cmd, bool with_data, bool with_extrapolate = true);
   // Loads or builds the model; throws Error when neither or both are given.
   std::unique_ptr<AlloyModel> Load(bool quiet) const;
 };

@@ -167,11 +167,11 @@ void Run(const MatchCommandOptions& o) {
   text += "best: x = " + DescribeComposition(best.x_atomic, system) + SigmaText(best.x_sigma) +
           "; " + DistanceText(best, is_spectrum) + " left" +
           (best.at_range_end ? " (at the end of the model's range)" : "") + "\n";
+  const std::string margin_text = is_spectrum ? FormatNumber(o.margin) + " % reflectance RMS"
+                                              : "dE00 " + FormatNumber(o.margin);
+  if (matches.size() == 1) text += "no other local minimum within " + margin_text + " of the best\n";
   if (matches.size() > 1) {
-    text += "other local minima within " +
-            (is_spectrum ? FormatNumber(o.margin) + " % reflectance RMS"
-                         : "dE00 " + FormatNumber(o.margin)) +
-            " of the best:\n";
+    text += "other local minima within " + margin_text + " of the best:\n";
     for (size_t i = 1; i < matches.size(); ++i) {
       text += "  x = " + DescribeComposition(matches[i].x_atomic, system) +
               SigmaText(matches[i].x_sigma) + "; " + DistanceText(matches[i], is_spectrum) +

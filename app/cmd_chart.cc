@@ -73,15 +73,15 @@ void Run(const ChartOptions& o) {
                   color::HexColor(s.srgb8).c_str());
     compositions += buf;
   }
-  render::WritePng(o.out, ChartImage(chart, 64, 8),
-                   {{"Title", chart.system + " colour by composition"},
-                    {"Description", chart.method + " model; " + chart.illuminant + ", " +
-                                        std::to_string(chart.observer_deg) +
-                                        "-degree observer; swatches left to right at atomic "
-                                        "fraction of " +
-                                        chart.element_a + ": " + compositions},
-                    {"Software", "alloycolor " ALLOYCOLOR_VERSION}});
-  if (!o.quiet) std::cerr << "alloycolor: wrote " << o.out << "\n";
+  const std::string png = render::PngBytes(
+      ChartImage(chart, 64, 8),
+      {{"Title", chart.system + " colour by composition"},
+       {"Description", chart.method + " model; " + chart.illuminant + ", " +
+                           std::to_string(chart.observer_deg) +
+                           "-degree observer; swatches left to right at atomic fraction of " +
+                           chart.element_a + ": " + compositions},
+       {"Software", "alloycolor " ALLOYCOLOR_VERSION}});
+  WriteOutput(o.out, png, o.quiet);
 }
 
 }  // namespace

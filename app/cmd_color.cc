@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "alloycolor/core/error.h"
+#include "alloycolor/core/json.h"
 #include "alloycolor/core/io.h"
 #include "alloycolor/color/material_color.h"
 #include "alloycolor/core/text.h"
@@ -84,13 +85,13 @@ void Run(const ColorOptions& o) {
       out["source"] = o.material.nk_file;
       out.update(color::ColorJson(c));
       RequireFinite(c, 0, o.material.nk_file);
-      std::cout << out.dump(2) << "\n";
+      PrintOutput(JsonText(out, 2) + "\n");
     } else {
       RequireFinite(c, 0, o.material.nk_file);
       std::string text;
       PrintHeader(&text, o.material.nk_file, o);
       PrintRow(&text, "-", c, -1);
-      std::cout << text;
+      PrintOutput(text);
     }
     return;
   }
@@ -118,7 +119,6 @@ void Run(const ColorOptions& o) {
       PrintRow(&text, label, c, sigma);
     }
   }
-  std::cout << text;
   if (o.json) {
     nlohmann::json out = common;
     out["system"] = model->system().Name();
@@ -128,8 +128,9 @@ void Run(const ColorOptions& o) {
     } else {
       out["results"] = results;
     }
-    std::cout << out.dump(2) << "\n";
+    text = JsonText(out, 2) + "\n";
   }
+  PrintOutput(text);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "alloycolor/core/error.h"
+#include "alloycolor/core/json.h"
 #include "alloycolor/export/export_files.h"
 #include "alloycolor/export/material_files.h"
 #include "common.h"
@@ -72,7 +73,7 @@ void Run(const ExportOptions& o) {
               << Triple(m.gulbrandsen.g) << "; " << Loss(m.gulbrandsen.error) << "\n";
     std::cerr << "alloycolor: gltf (Schlick from F0) " << Loss(m.f82.schlick_error) << "\n";
   }
-  if (o.json) std::cout << e.summary.dump(2) << "\n";
+  if (o.json) PrintOutput(JsonText(e.summary, 2) + "\n");
 }
 
 }  // namespace

@@ -20,9 +20,6 @@
 namespace alloycolor::app {
 namespace {
 
-// The most wavelength nodes a fit grid may have (the bundled data use under 200).
-constexpr int kMaxFitGridNodes = 20000;
-
 struct FitOptions {
   std::string data_dir;
   std::string exclude_text;
@@ -111,7 +108,10 @@ void Run(const FitOptions& o) {
     dataset = WithoutSamples(dataset, exclude);
   }
   std::unique_ptr<AlloyModel> old_model;
-  if (!o.from.empty()) old_model = ReadModelFile(o.from);
+  if (!o.from.empty()) {
+    old_model = ReadModelFile(o.from);
+    NoteInput(o.from);
+  }
   // Before the fit: the model must not replace an input (the manifest, a sample, --from).
   CheckOutputPath(o.out);
   if (o.lambda_step > 0) {
@@ -235,7 +235,7 @@ void RegisterFit(CLI::App& app) {
                   "as Nordheim's rule bows the damping, or 1 where leave-one-composition-out "
                   "finds it more than 10 % and one standard error better; lowered, with a "
                   "warning, where the fit leaves physics)")
-      ->check(NumberIn(0, 20, /*whole=*/true));
+      ->check(NumberIn(kDegreeRange));
   cmd->add_option("--terms", o->terms,
                   "physical: interband terms, comma-separated: lorentz, cp (Etchegoin 2006 "
                   "critical point), rioux-gap, rioux-edge (Rioux 2014); none for the Drude "
@@ -246,7 +246,7 @@ void RegisterFit(CLI::App& app) {
                   "smooth: weight of the roughness penalty across composition, 0 (interpolate) "
                   "to 1e6 (default: chosen by leave-one-composition-out cross-validation, or with "
                   "fewer than five compositions by the marginal likelihood)")
-      ->check(NumberIn(0, 1e6));
+      ->check(NumberIn(kSmoothingRange));
   cmd->add_option("--space", o->space,
                   "smooth: what its curves across composition describe: eps (eps1, eps2) or "
                   "log_eps (ln|eps| and arg eps: geometric interpolation, for samples whose "
@@ -257,14 +257,14 @@ void RegisterFit(CLI::App& app) {
   cmd->add_option("--lambda-from", o->lambda_from,
                   "smooth, physical: first wavelength of the fit grid, nm (physical default: "
                   "the common range within 300-1000 nm, or all of it for infrared data)")
-      ->check(NumberIn(1, 1e6));
+      ->check(NumberIn(kLambdaNmRange));
   cmd->add_option("--lambda-to", o->lambda_to,
                   "smooth, physical: last wavelength of the fit grid, nm")
-      ->check(NumberIn(1, 1e6));
+      ->check(NumberIn(kLambdaNmRange));
   cmd->add_option("--lambda-step", o->lambda_step,
                   "smooth, physical: grid step, nm (default 5; physical: range/200 in the "
                   "infrared); at least 0.01 nm, at most 20,000 grid nodes")
-      ->check(NumberIn(0.01, 1e5));
+      ->check(NumberIn(kLambdaStepNmRange));
   cmd->add_flag("--no-covariance", o->no_covariance, "smooth, physical: skip the covariance");
   cmd->add_option("--threads", o->threads,
                   "Threads for the leave-one-out folds of the fit (0: all the hardware's)")

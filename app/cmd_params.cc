@@ -7,6 +7,7 @@
 
 #include "alloycolor/core/composition.h"
 #include "alloycolor/core/error.h"
+#include "alloycolor/core/json.h"
 #include "common.h"
 
 namespace alloycolor::app {
@@ -52,7 +53,7 @@ std::string ElementsLine(const AlloySystem& system) {
 
 // Columns padded to their widest cell ("±" is two bytes and one column).
 void PrintTable(const std::vector<std::string>& header,
-                const std::vector<std::vector<std::string>>& rows) {
+                const std::vector<std::vector<std::string>>& rows, std::ostream* out) {
   const auto width_of = [](const std::string& cell) {
     return cell.size() - (cell.find("±") != std::string::npos ? 1 : 0);
   };
@@ -67,7 +68,7 @@ void PrintTable(const std::vector<std::string>& header,
       line += cells[c] + std::string(width[c] - width_of(cells[c]) + (c + 1 < cells.size() ? 2 : 0), ' ');
     }
     while (!line.empty() && line.back() == ' ') line.pop_back();
-    std::cout << line << "\n";
+    *out << line << "\n";
   };
   print(header);
   for (const auto& row : rows) print(row);
@@ -106,13 +107,14 @@ void Run(const ParamsOptions& o) {
                                 {"uncertainty", with_sigma ? "one sigma" : "none"},
                                 {"notes", notes},
                                 {"rows", rows}};
-    std::cout << out.dump(1) << "\n";
+    PrintOutput(JsonText(out, 1) + "\n");
     return;
   }
-  std::cout << "# " << model->method() << " model of " << model->system().Name()
+  std::ostringstream text;
+  text << "# " << model->method() << " model of " << model->system().Name()
             << "; x = atomic fraction of " << model->system().a.symbol << "\n";
-  for (const std::string& note : table.notes) std::cout << "# " << note << "\n";
-  std::cout << "# " << ElementsLine(model->system()) << "\n";
+  for (const std::string& note : table.notes) text << "# " << note << "\n";
+  text << "# " << ElementsLine(model->system()) << "\n";
   std::vector<std::string> header = {"x"};
   header.insert(header.end(), table.columns.begin(), table.columns.end());
   std::vector<std::vector<std::string>> rows;
@@ -123,7 +125,8 @@ void Run(const ParamsOptions& o) {
     for (const auto& q : table.rows[i]) row.push_back(Text(q, with_sigma));
     rows.push_back(std::move(row));
   }
-  PrintTable(header, rows);
+  PrintTable(header, rows, &text);
+  PrintOutput(text.str());
 }
 
 }  // namespace

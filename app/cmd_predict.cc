@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "alloycolor/core/error.h"
+#include "alloycolor/core/json.h"
 #include "alloycolor/core/io.h"
 #include "alloycolor/model/optics.h"
 #include "alloycolor/core/spectrum.h"
@@ -99,7 +100,7 @@ void Run(const PredictOptions& o, CLI::App* cmd) {
       out["n_sigma"] = n_sigma;
       out["k_sigma"] = k_sigma;
     }
-    std::cout << out.dump(1) << "\n";
+    PrintOutput(JsonText(out, 1) + "\n");
     return;
   }
   std::ostringstream csv;
@@ -110,7 +111,7 @@ void Run(const PredictOptions& o, CLI::App* cmd) {
     if (o.sigma) csv << "," << n_sigma[i] << "," << k_sigma[i];
     csv << "\n";
   }
-  std::cout << csv.str();
+  PrintOutput(csv.str());
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // alloycolor validate: refit every method without held-out samples, predict them and write
 // a validation report (report.json and a self-contained report.html); see report.h.
 #include <algorithm>
+#include <cstdarg>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -9,6 +10,7 @@
 #include <sstream>
 
 #include "alloycolor/core/error.h"
+#include "alloycolor/core/json.h"
 #include "alloycolor/core/io.h"
 #include "alloycolor/core/parallel.h"
 #include "common.h"
@@ -89,18 +91,36 @@ void PrepareOutput(const std::string& dir) {
   fs::create_directories(dir, ec);
   if (ec) throw Error("--out: cannot create folder '" + dir + "': " + ec.message());
   const std::string probe = (fs::path(dir) / ".alloycolor-write-check").string();
-  WriteFileAtomic(probe, "");
+  WriteFileAtomic(probe, "", &ProgramGuard());
   fs::remove(probe, ec);
   for (const char* name : {"report.json", "report.html"}) {
     CheckOutputPath((fs::path(dir) / name).string());  // no symlink or device to replace
   }
 }
 
-void PrintSummary(const nlohmann::json& report) {
+// printf into a string.
+__attribute__((format(printf, 2, 3))) void Appendf(std::string* text, const char* format, ...) {
+  va_list args, again;
+  va_start(args, format);
+  va_copy(again, args);
+  const int n = std::vsnprintf(nullptr, 0, format, args);
+  va_end(args);
+  if (n > 0) {
+    const std::size_t at = text->size();
+    text->resize(at + static_cast<std::size_t>(n) + 1);
+    std::vsnprintf(text->data() + at, static_cast<std::size_t>(n) + 1, format, again);
+    text->resize(at + static_cast<std::size_t>(n));
+  }
+  va_end(again);
+}
+
+// The summary table printed after the report is written.
+std::string SummaryText(const nlohmann::json& report) {
+  std::string text;
   const auto& methods = report["methods"];
-  std::printf("%-18s", "metric (mean)");
-  for (const auto& m : methods) std::printf(" %16s", m.get<std::string>().c_str());
-  std::printf("\n");
+  Appendf(&text, "%-18s", "metric (mean)");
+  for (const auto& m : methods) Appendf(&text, " %16s", m.get<std::string>().c_str());
+  Appendf(&text, "\n");
   // delta_e00 per angle first, then the spectral metrics.
   std::vector<std::string> keys;
   for (const auto& [metric, row] : report["summary"].items()) {
@@ -111,7 +131,7 @@ void PrintSummary(const nlohmann::json& report) {
   }
   for (const std::string& metric : keys) {
     const auto& row = report["summary"][metric];
-    std::printf("%-18s", metric.c_str());
+    Appendf(&text, "%-18s", metric.c_str());
     for (const auto& m : methods) {
       const auto& cell = row[m.get<std::string>()];
       char buf[48];
@@ -121,9 +141,9 @@ void PrintSummary(const nlohmann::json& report) {
         std::snprintf(buf, sizeof buf, "%.4g (%d/%d)", cell["mean"].get<double>(),
                       cell["wins"].get<int>(), cell["count"].get<int>());
       }
-      std::printf(" %16s", buf);
+      Appendf(&text, " %16s", buf);
     }
-    std::printf("\n");
+    Appendf(&text, "\n");
   }
   // How often the observed colour error lay within the method's 1 and 2 sigma.
   const auto& honesty = report["sigma_honesty"];
@@ -135,7 +155,7 @@ void PrintSummary(const nlohmann::json& report) {
   }
   for (const std::string& angle : angles) {
     for (const char* key : {"within_1_sigma", "within_2_sigma"}) {
-      std::printf("%-18s", (std::string(key == std::string("within_1_sigma") ? "in_1sigma_" : "in_2sigma_") + angle).c_str());
+      Appendf(&text, "%-18s", (std::string(key == std::string("within_1_sigma") ? "in_1sigma_" : "in_2sigma_") + angle).c_str());
       for (const auto& m : methods) {
         const std::string name = m.get<std::string>();
         char buf[48];
@@ -145,9 +165,9 @@ void PrintSummary(const nlohmann::json& report) {
           const auto& cell = honesty[name][angle];
           std::snprintf(buf, sizeof buf, "%d/%d", cell[key].get<int>(), cell["count"].get<int>());
         }
-        std::printf(" %16s", buf);
+        Appendf(&text, " %16s", buf);
       }
-      std::printf("\n");
+      Appendf(&text, "\n");
     }
   }
   // The composition recovered from each held-out sample's colour (report.json's
@@ -174,8 +194,9 @@ void PrintSummary(const nlohmann::json& report) {
     }
   }
   if (!report["delta_e00_available"].get<bool>()) {
-    std::printf("delta_e00: %s\n", report["metric_ranges"]["delta_e00"].get<std::string>().c_str());
+    Appendf(&text, "delta_e00: %s\n", report["metric_ranges"]["delta_e00"].get<std::string>().c_str());
   }
+  return text;
 }
 
 void Run(const ValidateOptions& o) {
@@ -211,13 +232,13 @@ void Run(const ValidateOptions& o) {
       validate::ComputeValidation(dataset, splits, colorimeter, options, progress);
   // Both files are rendered before either is written, and written as a set.
   const nlohmann::json json = ValidationJson(report);
-  const std::string json_text = json.dump(1) + "\n";
+  const std::string json_text = JsonText(json, 1) + "\n";
   const std::string html_text = ValidationHtml(report);
   namespace fs = std::filesystem;
   WriteOutputs({{(fs::path(o.out) / "report.json").string(), json_text},
                 {(fs::path(o.out) / "report.html").string(), html_text}},
                o.quiet);
-  PrintSummary(json);
+  PrintOutput(SummaryText(json));
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/io.h"
 #include "alloycolor/core/output.h"
+#include "alloycolor/core/setting.h"
 #include "alloycolor/core/text.h"
 #include "alloycolor/model/registry.h"
 
@@ -35,7 +36,9 @@ std::string DataRoot() {
   return ALLOYCOLOR_SOURCE_DATA_DIR;
 }
 
-Dataset LoadDatasetArg(const std::string& arg) {
+namespace {
+
+Dataset LoadDatasetFrom(const std::string& arg) {
   std::error_code ec;
   if (!fs::exists(arg, ec)) {
     const fs::path bundled = fs::path(DataRoot()) / arg;
@@ -46,8 +49,24 @@ Dataset LoadDatasetArg(const std::string& arg) {
   return LoadDataset(arg);
 }
 
+}  // namespace
+
+Dataset LoadDatasetArg(const std::string& arg) {
+  Dataset dataset = LoadDatasetFrom(arg);
+  NoteInputs(dataset);
+  return dataset;
+}
+
 color::Colorimeter LoadColorimeter(const std::string& illuminant, int observer_deg) {
-  return color::Colorimeter::Load(DataRoot(), illuminant, observer_deg);
+  const std::string root = DataRoot();
+  color::Colorimeter colorimeter = color::Colorimeter::Load(root, illuminant, observer_deg);
+  // The colour tables read are inputs too: note the folder's files.
+  std::error_code ec;
+  for (fs::directory_iterator it(fs::path(root) / "cie", ec), end; !ec && it != end;
+       it.increment(ec)) {
+    if (it->is_regular_file(ec)) NoteInput(it->path().string());
+  }
+  return colorimeter;
 }
 
 namespace {
@@ -135,7 +154,7 @@ void WriteOutput(const std::string& path, const std::string& contents, bool quie
 }
 
 void WriteOutputs(const std::vector<OutputFile>& files, bool quiet) {
-  WriteFileSetAtomic(files);
+  WriteFileSetAtomic(files, &ProgramGuard());
   if (quiet) return;
   for (const OutputFile& file : files) {
     std::cerr << "alloycolor: wrote " << MessageLine(file.path) << "\n";
@@ -184,14 +203,19 @@ std::unique_ptr<AlloyModel> ModelSource::Load(bool quiet) const {
   if (!model_path.empty() && !data_dir.empty()) {
     throw Error("give either --model or --data, not both");
   }
-  if (!model_path.empty()) return ReadModelFile(model_path);
+  if (!model_path.empty()) {
+    auto model = ReadModelFile(model_path);
+    NoteInput(model_path);
+    return model;
+  }
   if (!data_dir.empty()) {
     const Dataset dataset = LoadDatasetArg(data_dir);
     if (!quiet) {
       for (const std::string& w : dataset.warnings) Warn(w);
     }
+    // No progress lines: a command that then fails on another option prints its one error
+    // line only (fit, whose work this is, reports its progress itself).
     fit::FitSettings settings;
-    settings.progress = ProgressPrinter(quiet);
     const color::Colorimeter colorimeter = LoadColorimeter("D65", 2);
     settings.colorimeter = &colorimeter;
     auto model = fit::BuildModel(method, dataset, settings);
@@ -225,6 +249,7 @@ NkSpectrum MaterialSource::LoadMeasured(bool quiet) const {
   std::vector<std::string> warnings;
   NkSpectrum nk =
       ReadNkFile(nk_file, columns.empty() ? NkColumns{} : ParseNkColumns(columns), &warnings);
+  NoteInput(nk_file);
   if (!quiet) {
     for (const auto& w : warnings) Warn(w);
   }
@@ -255,18 +280,14 @@ void AddColorimetryOptions(CLI::App* cmd, std::string* illuminant, int* observer
 }
 
 CLI::Validator NumberIn(double lo, double hi, bool whole) {
-  const std::string range = "[" + FormatNumber(lo) + ", " + FormatNumber(hi) + "]";
-  const std::string kind = whole ? "a whole number in " : "a finite number in ";
+  return NumberIn(NumberRange{lo, hi, whole});
+}
+
+CLI::Validator NumberIn(const NumberRange& range) {
   return CLI::Validator(
-      [lo, hi, whole, range, kind](std::string& text) -> std::string {
-        double value = 0;
-        if (!ParseFiniteDouble(Trim(text), &value) || !(value >= lo && value <= hi) ||
-            (whole && value != std::floor(value))) {
-          return Quote(MessageLine(text, 40)) + " is not " + kind + range;
-        }
-        return std::string();
-      },
-      (whole ? "INT in " : "NUMBER in ") + range);
+      [range](std::string& text) -> std::string { return NumberProblem(text, range); },
+      (range.whole ? "INT in [" : "NUMBER in [") + FormatNumber(range.lo) + ", " +
+          FormatNumber(range.hi) + "]");
 }
 
 void CheckOutputFolder(const std::string& path, const std::string& option) {

@@ -14,8 +14,10 @@
 #include "alloycolor/core/dataset.h"
 #include "alloycolor/core/output.h"
 #include "alloycolor/core/progress.h"
+#include "alloycolor/core/setting.h"
 #include "alloycolor/core/spectrum.h"
 #include "alloycolor/color/colorimetry.h"
+#include "output_guard.h"
 
 namespace alloycolor::app {
 
@@ -23,10 +25,11 @@ namespace alloycolor::app {
 // next to the program, else the source tree's data/.
 std::string DataRoot();
 
-// A data set given on the command line: a path, or the name of a bundled set ("Au-Ag").
+// A data set given on the command line: a path, or the name of a bundled set ("Au-Ag");
+// its files are noted as inputs (output_guard.h).
 Dataset LoadDatasetArg(const std::string& arg);
 
-// Colorimeter for --illuminant and --observer.
+// Colorimeter for --illuminant and --observer; the colour tables are noted as inputs.
 color::Colorimeter LoadColorimeter(const std::string& illuminant, int observer_deg);
 
 // Comma-separated compositions ("0.5,75wt%,18k") as atomic fractions of element a.
@@ -47,7 +50,8 @@ ProgressCallback ProgressPrinter(bool quiet);
 // Every method with its summary, for --help.
 std::string MethodsHelp();
 
-// Writes a file atomically (output.h: never over an input or a special file) and says so
+// Writes a file atomically (output.h, with the program's guard: never over an input or a
+// special file, its temporary removed on a signal) and says so
 // on stderr unless quiet. WriteOutputs writes several as a set: all or none replaced.
 void WriteOutput(const std::string& path, const std::string& contents, bool quiet);
 void WriteOutputs(const std::vector<OutputFile>& files, bool quiet);
@@ -95,6 +99,8 @@ void AddColorimetryOptions(CLI::App* cmd, std::string* illuminant, int* observer
 // An option check: the value must be a finite number in [lo, hi] ("nan", "-1" refused
 // with a message naming the range). For integer options too: "2.5" and 2^40 are refused.
 CLI::Validator NumberIn(double lo, double hi, bool whole = false);
+// The same for a library's named range (core/setting.h), with its words.
+CLI::Validator NumberIn(const NumberRange& range);
 
 // Refuses an output path whose folder does not exist, before any work is done.
 void CheckOutputFolder(const std::string& path, const std::string& option);

@@ -2,9 +2,10 @@
 // composition. Errors print one line (control characters shown as '?', cut at 300
 // characters) and exit with status 2, out-of-memory included; 3 is kept for a bug. A
 // closed standard output (`alloycolor sweep | head`) ends the run quietly with status 0.
-// SIGINT, SIGTERM and SIGHUP remove the temporary of a file being written.
+// SIGINT, SIGTERM and SIGHUP remove the temporary of a file being written; SIGPIPE and
+// SIGXFSZ are ignored, so a closed pipe or a file past `ulimit -f` is one error line
+// naming the output (output_guard.h).
 #include <poll.h>
-#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -22,9 +23,9 @@
 #endif
 
 #include "alloycolor/core/error.h"
-#include "alloycolor/core/output.h"
 #include "alloycolor/core/text.h"
 #include "common.h"
+#include "output_guard.h"
 
 namespace {
 
@@ -44,9 +45,9 @@ bool StdoutReaderGone() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  // A closed pipe is an error on write (EPIPE), not a signal that kills the program.
-  signal(SIGPIPE, SIG_IGN);
-  alloycolor::InstallTemporaryCleanup();
+  // The program's output policy: inputs noted, temporaries removed on signals, SIGPIPE and
+  // SIGXFSZ turned into write errors.
+  alloycolor::app::ProgramOutputGuard output_guard;
 #ifdef ALLOYCOLOR_HAVE_GLOG
   // The solver's own log (warnings, covariance notes) is not the program's output: progress
   // goes through the progress callbacks, errors through one line.

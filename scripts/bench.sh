@@ -13,6 +13,29 @@
 # BUILD_DIR=dir uses an existing Release build there instead of setting up build/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# What it prints also becomes docs/performance.md (a header naming the command, date,
+# commit and machine, then the output), once the run has succeeded.
+if [[ -z ${ALLOYCOLOR_BENCH_INNER:-} ]]; then
+  log=$(mktemp)
+  status=0
+  ALLOYCOLOR_BENCH_INNER=1 bash "$0" "$@" | tee "$log" || status=$?
+  if [[ $status == 0 ]]; then
+    {
+      echo "# Performance"
+      echo
+      echo "Written by \`scripts/bench.sh $*\` on $(date -u +%F), commit" \
+           "$(git rev-parse --short HEAD 2>/dev/null || echo unknown). Every figure stands beside a" \
+           "straightforward implementation measured in the same run (\"naive\"), or the target."
+      echo
+      echo '```'
+      cat "$log"
+      echo '```'
+    } > docs/performance.md.tmp && mv docs/performance.md.tmp docs/performance.md
+    echo "bench: wrote docs/performance.md" >&2
+  fi
+  rm -f "$log"
+  exit "$status"
+fi
 min_time=1.0
 sweep_runs=3
 fit_repetitions=5

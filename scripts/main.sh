@@ -3,7 +3,7 @@
 # Outputs go to out/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scripts/setup.sh
+ALLOYCOLOR_TARGETS=alloycolor scripts/setup.sh
 ac=build/app/alloycolor
 mkdir -p out
 

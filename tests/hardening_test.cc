@@ -5,9 +5,11 @@
 // run quietly, and every error is one sanitised line. The references are the inputs' own
 // bytes (unchanged), the file system's own state (still a FIFO, still a link) and the
 // exit statuses the program documents.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/stat.h>
+#include <sys/statvfs.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -147,9 +149,18 @@ TEST(OutputWriter, AReportIsReplacedAsASet) {
   EXPECT_EQ(std::distance(fs::directory_iterator(out), fs::directory_iterator()), 2);
 }
 
-// In-process: a child writing a large file is sent SIGTERM while its temporary exists;
-// the temporary must be gone and the old file kept. Tried a few times, because the child
-// may finish before the parent sees the temporary.
+// In-process: a child writing a large file through an OutputGuard is sent SIGTERM while
+// its temporary exists; its handler (the program's, in miniature) removes the guard's
+// temporaries: the temporary must be gone and the old file kept. Tried a few times,
+// because the child may finish before the parent sees the temporary.
+OutputGuard* g_child_guard = nullptr;
+
+extern "C" void ChildRemoveTemporaries(int signal_number) {
+  if (g_child_guard) g_child_guard->RemoveTemporaries();
+  signal(signal_number, SIG_DFL);
+  raise(signal_number);
+}
+
 TEST(OutputWriter, SigtermRemovesTheTemporary) {
   const std::string dir = MakeTempDir();
   const std::string out = dir + "/big.bin";
@@ -159,9 +170,11 @@ TEST(OutputWriter, SigtermRemovesTheTemporary) {
     const pid_t pid = fork();
     ASSERT_GE(pid, 0);
     if (pid == 0) {
-      InstallTemporaryCleanup();
+      OutputGuard guard;
+      g_child_guard = &guard;
+      signal(SIGTERM, ChildRemoveTemporaries);
       try {
-        WriteFileAtomic(out, std::string(256u << 20, 'x'));
+        WriteFileAtomic(out, std::string(256u << 20, 'x'), &guard);
       } catch (...) {
         _exit(3);
       }
@@ -193,6 +206,141 @@ TEST(OutputWriter, SigtermRemovesTheTemporary) {
     EXPECT_EQ(ReadBytes(out), "old\n");
   }
   if (!caught) GTEST_SKIP() << "the child always finished before the signal";
+}
+
+// The same through the real program: a sweep streaming to --out, sent SIGTERM while its
+// temporary exists, leaves no temporary and the old file.
+TEST(OutputWriter, SigtermRemovesTheProgramsTemporary) {
+  const std::string dir = MakeTempDir();
+  const std::string out = dir + "/sweep.csv";
+  WriteText(out, "old\n");
+  bool caught = false;
+  for (int attempt = 0; attempt < 3 && !caught; ++attempt) {
+    const pid_t pid = fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+      const char* program = ALLOYCOLOR_BINARY;
+      execl(program, program, "sweep", "--data", "Au-Ag", "--method", "eps-linear", "--steps",
+            "5000000", "--out", out.c_str(), "--quiet", static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    const std::string temp = out + ".~" + std::to_string(pid);
+    bool seen = false;
+    int status = 0;
+    while (!seen) {
+      if (fs::exists(temp) && fs::file_size(temp) > 0) seen = true;
+      if (waitpid(pid, &status, WNOHANG) == pid) break;
+      if (!seen) usleep(500);
+    }
+    if (!seen) {
+      WriteText(out, "old\n");
+      continue;
+    }
+    kill(pid, SIGTERM);
+    waitpid(pid, &status, 0);
+    if (WIFEXITED(status)) {
+      WriteText(out, "old\n");
+      continue;
+    }
+    caught = true;
+    EXPECT_EQ(WTERMSIG(status), SIGTERM);
+    EXPECT_FALSE(fs::exists(temp));
+    EXPECT_EQ(ReadBytes(out), "old\n");
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
+  }
+  if (!caught) GTEST_SKIP() << "the sweep always finished before the signal";
+}
+
+// The guard is an object: reading a file notes nothing; a guard refuses the inputs noted
+// in it, and only those; without a guard, only special files are refused.
+TEST(OutputGuard, OnlyNotedInputsAreRefused) {
+  const std::string dir = MakeTempDir();
+  const std::string input = dir + "/in.csv";
+  WriteText(input, "lambda_nm,n,k\n500,1,2\n600,1,2\n");
+  EXPECT_FALSE(ReadFileText(input).empty());
+  WriteFileAtomic(input, ReadFileText(input));  // read, then written back: allowed
+  OutputGuard guard;
+  WriteFileAtomic(input, ReadFileText(input), &guard);  // read but not noted: allowed
+  guard.NoteInput(input);
+  EXPECT_THAT(ErrorOf([&] { WriteFileAtomic(input, "new\n", &guard); }),
+              ::testing::HasSubstr("one of this command's inputs"));
+  EXPECT_THAT(ErrorOf([&] { StreamOutput stream(dir + "/../" + fs::path(dir).filename().string() +
+                                                "/in.csv",
+                                                &guard); }),
+              ::testing::HasSubstr("one of this command's inputs"));
+  OutputGuard other;
+  WriteFileAtomic(input, "other\n", &other);
+  EXPECT_EQ(ReadBytes(input), "other\n");
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
+}
+
+// The program run under `ulimit -f KB` through bash, its outputs captured in files
+// outside the limit's reach (the shell opens them before the limit applies to writes).
+RunResult RunWithFileLimit(int kilobytes, const std::vector<std::string>& args,
+                           const std::string& stdout_path = "") {
+  const std::string files = MakeTempDir();
+  std::string command =
+      "ulimit -f " + std::to_string(kilobytes) + "; exec '" + std::string(ALLOYCOLOR_BINARY) + "'";
+  for (const std::string& a : args) command += " '" + a + "'";
+  const std::string out = stdout_path.empty() ? files + "/out" : stdout_path;
+  command += " >'" + out + "' 2>'" + files + "/err'";
+  const pid_t pid = fork();
+  if (pid == 0) {
+    execl("/bin/bash", "bash", "-c", command.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  int status = 0;
+  waitpid(pid, &status, 0);
+  RunResult r;
+  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = ReadBytes(out);
+  r.err = ReadBytes(files + "/err");
+  fs::remove_all(files);
+  return r;
+}
+
+// No file in dir whose name holds ".~" (a temporary left behind).
+void ExpectNoTemporary(const std::string& dir) {
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    EXPECT_EQ(entry.path().filename().string().find(".~"), std::string::npos) << entry.path();
+  }
+}
+
+// SIGXFSZ is ignored, so a file past `ulimit -f` is an error the writer sees (EFBIG): one
+// line naming the output and the limit, status 2, no temporary, no partial output, the
+// old file kept.
+TEST(Resources, AFileSizeLimitIsOneErrorAndNoPartialOutput) {
+  const std::string dir = MakeTempDir();
+  const std::string model = dir + "/m.json";
+  ASSERT_EQ(
+      RunProgram({"fit", "--data", "Au-Ag", "--method", "paper", "--out", model, "--quiet"}).status,
+      0);
+  const std::string old = dir + "/old.out";
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"fit", "--data", "Au-Ag", "--method", "paper", "--out", old,
+                                 "--quiet"},
+        {"sweep", "--model", model, "--steps", "100000", "--out", old, "--quiet"},
+        {"sweep", "--model", model, "--steps", "100000", "--format", "json", "--out", old},
+        {"explore", "--model", model, "--size", "64", "--out", old, "--quiet"}}) {
+    SCOPED_TRACE(args[0] + " " + args.back());
+    WriteText(old, "old\n");
+    const RunResult r = RunWithFileLimit(10, args);
+    EXPECT_NE(r.status, 0);
+    ExpectOneError(r, {old, "ulimit -f"});
+    EXPECT_EQ(ReadBytes(old), "old\n");
+    ExpectNoTemporary(dir);
+  }
+  // Standard output redirected to a file: refused before a byte is written.
+  const std::string stdout_file = dir + "/stdout.csv";
+  const RunResult r =
+      RunWithFileLimit(10, {"sweep", "--model", model, "--steps", "100000"}, stdout_file);
+  ExpectOneError(r, {"standard output", "ulimit -f"});
+  EXPECT_EQ(ReadBytes(stdout_file), "");
+  ExpectNoTemporary(dir);
+  // Under the limit, the same commands work.
+  const RunResult small = RunWithFileLimit(100000, {"sweep", "--model", model, "--steps", "5"});
+  EXPECT_EQ(small.status, 0) << small.err;
+  EXPECT_EQ(CountLines(small.out), 6);
 }
 
 TEST(Bounds, OptionValuesAreChecked) {
@@ -287,6 +435,45 @@ TEST(Messages, AModelWithAStringFinalCostNamesTheField) {
                  {"m.json", "final_cost"});
 }
 
+// A full device (ENOSPC) on standard output: one line naming standard output and the
+// cause, status 2, for a command that prints a table and for a sweep.
+TEST(Resources, AFullDiskIsOneErrorNamingTheOutput) {
+  const std::string dir = MakeTempDir();
+  for (const std::string& args :
+       {std::string("color --data Au-Ag --method paper --x 0.5,0.6"),
+        std::string("sweep --data Au-Ag --method paper --steps 10"),
+        std::string("predict --data Au-Ag --method paper --x 0.5")}) {
+    SCOPED_TRACE(args);
+    const std::string command = "exec '" + std::string(ALLOYCOLOR_BINARY) + "' " + args +
+                                " >/dev/full 2>'" + dir + "/err'";
+    const int status = std::system(("bash -c \"" + command + "\"").c_str());
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 2);
+    const std::string err = ReadBytes(dir + "/err");
+    EXPECT_EQ(CountLines(err), 1) << err;
+    EXPECT_NE(err.find("cannot write standard output: no space left"), std::string::npos) << err;
+  }
+}
+
+// A file name that is not UTF-8 (byte 0xff, from a Latin-1 folder) reaches JSON output
+// with U+FFFD in its place, instead of nlohmann's "invalid UTF-8 byte" naming nothing.
+TEST(Messages, AFileNameThatIsNotUtf8IsReplacedInJson) {
+  const std::string dir = MakeTempDir();
+  const std::string nk = dir + "/Au\xff.yml";
+  fs::copy_file(DataDir() + "/pure/Au-Johnson.yml", nk);
+  const RunResult color = RunProgram({"color", "--nk", nk, "--json"});
+  ASSERT_EQ(color.status, 0) << color.err;
+  const nlohmann::json out = nlohmann::json::parse(color.out);
+  EXPECT_EQ(out.at("source").get<std::string>(), dir + "/Au\xef\xbf\xbd.yml");
+  const RunResult exported = RunProgram(
+      {"export", "--nk", nk, "--format", "f82", "--out", dir + "/e\xff", "--json", "--quiet"});
+  ASSERT_EQ(exported.status, 0) << exported.err;
+  const nlohmann::json files = nlohmann::json::parse(exported.out).at("files");
+  ASSERT_EQ(files.size(), 1u);
+  EXPECT_EQ(files[0].get<std::string>(), dir + "/e\xef\xbf\xbd.f82.json");
+  EXPECT_TRUE(fs::exists(dir + "/e\xff.f82.json"));
+}
+
 // ---- Round two: the classes still open after the first pass.
 
 std::string BadInput(const std::string& name) { return TestsDir() + "/bad-inputs/" + name; }
@@ -295,6 +482,37 @@ double SecondsOf(const std::function<void()>& f) {
   const auto start = std::chrono::steady_clock::now();
   f();
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// A sweep past 1 GB is refused before the work, naming its size and --force; forced, it
+// must still fit the size limit for files and the free space of its file system.
+TEST(Resources, AHugeSweepIsRefusedUnlessForced) {
+  const std::string dir = MakeTempDir();
+  const std::string out = dir + "/huge.csv";
+  RunResult r;
+  EXPECT_LT(SecondsOf([&] {
+              r = RunProgram({"sweep", "--data", "Au-Ag", "--steps", "1000000000", "--out", out});
+            }),
+            5.0);
+  ExpectOneError(r, {"--steps 1000000000", "1000000000 rows", "78 GB", "1 GB", "--force"});
+  ExpectOneError(RunProgram({"sweep", "--data", "Au-Ag", "--steps", "20000000", "--format",
+                             "json"}),
+                 {"2.2 GB", "--force"});
+  // Forced past `ulimit -f`: refused before the work, naming the limit.
+  r = RunWithFileLimit(
+      1000, {"sweep", "--data", "Au-Ag", "--steps", "20000000", "--force", "--out", out});
+  ExpectOneError(r, {out, "1.6 GB", "ulimit -f"});
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 0);
+  // Forced past the free space: only tried where the file system has less than the
+  // sweep's 111 GB of JSON (otherwise the sweep would start writing them).
+  struct statvfs fs_info;
+  ASSERT_EQ(statvfs(dir.c_str(), &fs_info), 0);
+  const double free_bytes = static_cast<double>(fs_info.f_bavail) * fs_info.f_frsize;
+  if (free_bytes > 100e9) GTEST_SKIP() << "over 100 GB free: the free-space check is not tried";
+  ExpectOneError(RunProgram({"sweep", "--data", "Au-Ag", "--steps", "1000000000", "--format",
+                             "json", "--force", "--out", out, "--quiet"}),
+                 {out, "111 GB to write", "free on its file system"});
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 0);
 }
 
 // Every command that reads a model refuses one that cannot be used over its stated range,

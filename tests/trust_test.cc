@@ -3,7 +3,7 @@
 //  - every method, fitted to all samples of a bundled set, either comes within CIEDE2000 1
 //    of each of its own samples, or warns naming that sample and claims a one-sigma there
 //    of at least the miss (Cu-Zn with Querry's zinc: the paper model carries brass to x = 0);
-//  - the misfit term of the draws by hand: at a training composition half the draws land on
+//  - the misfit term of the draws by hand: at a training composition every draw lands on
 //    the measurement, between compositions the misfit is interpolated linearly;
 //  - the in-sample table and the new uncertainty fields survive the model file.
 #include <gtest/gtest.h>
@@ -47,7 +47,9 @@ void ExpectHonestAtOwnSamples(const AlloyModel& model, const Dataset& data) {
                        << " without a warning";
     ASSERT_TRUE(model.HasUncertainty()) << model.method();
     const double sigma = color::DeltaE00Sigma(D65(), model, s.x_atomic, 0.0);
-    EXPECT_GE(sigma, e.delta_e00) << model.method() << " at " << s.file;
+    // Every draw lands on the measurement there (the misfit term), so sigma is the miss
+    // up to rounding, and the data's precision only adds.
+    EXPECT_GE(sigma, e.delta_e00 * (1 - 1e-9)) << model.method() << " at " << s.file;
   }
 }
 
@@ -85,7 +87,7 @@ TEST(InSample, QuerryZincUnderPaperWarnsAndCoversTheMiss) {
   const std::unique_ptr<AlloyModel> model = fit::BuildModel("paper", data, settings);
   const double miss = color::ErrorAgainstSample(D65(), *model, data.samples.front()).delta_e00;
   EXPECT_GT(miss, 5.0);  // the paper model cannot invert the non-metallic zinc
-  EXPECT_GE(color::DeltaE00Sigma(D65(), *model, 0.0, 0.0), miss);
+  EXPECT_GE(color::DeltaE00Sigma(D65(), *model, 0.0, 0.0), miss * (1 - 1e-9));
   // Across the gap to the next sample the sigma falls off, and at that sample it is small.
   const double next = data.samples[1].x_atomic;
   EXPECT_LT(color::DeltaE00Sigma(D65(), *model, next, 0.0), 1.0);
@@ -115,7 +117,7 @@ TEST(Misfit, DrawsByHand) {
     const std::complex<double> r = r0 * (1 - x) + r1 * x;
     const auto draws = model.PermittivityDraws(x, {550}, 4, 7);
     for (int d = 0; d < 4; ++d) {
-      std::complex<double> expected = centre + (d % 2 == 0 ? 1.0 : -1.0) * std::abs(centre) * r;
+      std::complex<double> expected = centre + std::abs(centre) * r;
       if (expected.imag() < 0) expected.imag(0.0);
       EXPECT_NEAR(std::abs(draws[d][0] - expected), 0.0, 1e-12 * std::abs(centre)) << x;
     }

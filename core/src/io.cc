@@ -23,7 +23,6 @@
 #include <vector>
 
 #include "alloycolor/core/error.h"
-#include "alloycolor/core/output.h"
 #include "alloycolor/core/permittivity.h"
 #include "alloycolor/core/text.h"
 #include "alloycolor/core/units.h"
@@ -1296,7 +1295,6 @@ std::string ReadFileText(const std::string& path) {
     Fail(cannot + "the file is " + std::to_string(info.st_size / (1 << 20)) +
          " MiB, over the " + std::to_string(kMaxInputFileBytes >> 20) + " MiB an input may have");
   }
-  NoteInputFile(path);
   std::string text;
   char buffer[65536];
   while (true) {

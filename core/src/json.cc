@@ -30,6 +30,10 @@ nlohmann::json::parser_callback_t RejectDuplicateKeys(const std::string& source)
       };
 }
 
+std::string JsonText(const nlohmann::json& value, int indent) {
+  return value.dump(indent, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
 bool WholeNumber(const nlohmann::json& value_json, std::int64_t lo, std::int64_t hi,
                  std::int64_t* value) {
   if (value_json.is_number_unsigned()) {

@@ -1,15 +1,16 @@
 #include "alloycolor/core/output.h"
 
 #include <fcntl.h>
-#include <signal.h>
 #include <sys/file.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
+#include <sys/statvfs.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <cerrno>
-#include <csignal>
 #include <cstddef>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -32,72 +33,111 @@ constexpr std::size_t kNameMax = 255;
 std::string ErrnoText(int error) { return std::generic_category().message(error); }
 
 // Inputs by (device, inode), with the path they were read by.
-using FileId = std::pair<dev_t, ino_t>;
+using FileId = std::pair<unsigned long long, unsigned long long>;
 
-std::mutex& InputsMutex() {
-  static std::mutex mutex;
-  return mutex;
+}  // namespace
+
+// A temporary being written: state 0 free, 1 being filled in, 2 tracked.
+struct OutputGuard::Slot {
+  std::atomic<int> state{0};
+  char path[kSlotBytes];
+};
+
+struct OutputGuard::Inputs {
+  std::mutex mutex;
+  std::map<FileId, std::string> by_id;
+};
+
+OutputGuard::OutputGuard()
+    : slots_(std::make_unique<Slot[]>(kSlots)), inputs_(std::make_unique<Inputs>()) {
+  static_assert(std::atomic<int>::is_always_lock_free, "the signal handler reads the slots");
 }
-std::map<FileId, std::string>& Inputs() {
-  static std::map<FileId, std::string> inputs;
-  return inputs;
+
+OutputGuard::~OutputGuard() = default;
+
+void OutputGuard::NoteInput(const std::string& path) {
+  struct stat info;
+  if (stat(path.c_str(), &info) != 0) return;
+  std::lock_guard<std::mutex> lock(inputs_->mutex);
+  inputs_->by_id.emplace(FileId{info.st_dev, info.st_ino}, path);
 }
 
-// Temporaries being written, for the signal handler: fixed slots, no allocation there.
-constexpr int kSlots = 64;
-constexpr std::size_t kSlotBytes = 4096;
-char g_slot_path[kSlots][kSlotBytes];
-volatile sig_atomic_t g_slot_used[kSlots];
-std::mutex g_slot_mutex;
+void OutputGuard::CheckNotInput(const std::string& path, unsigned long long device,
+                                unsigned long long inode) {
+  std::lock_guard<std::mutex> lock(inputs_->mutex);
+  const auto input = inputs_->by_id.find(FileId{device, inode});
+  if (input == inputs_->by_id.end()) return;
+  // The input is still that file (not deleted, its inode reused by this one)?
+  struct stat again;
+  if (stat(input->second.c_str(), &again) != 0 || again.st_dev != device || again.st_ino != inode) {
+    inputs_->by_id.erase(input);
+    return;
+  }
+  Fail("cannot write '" + path + "': it is one of this command's inputs ('" + input->second +
+       "'); choose another output name");
+}
 
-int TakeSlot(const std::string& temp) {
+int OutputGuard::TrackTemporary(const std::string& temp) noexcept {
   if (temp.size() >= kSlotBytes) return -1;
-  std::lock_guard<std::mutex> lock(g_slot_mutex);
   for (int i = 0; i < kSlots; ++i) {
-    if (g_slot_used[i]) continue;
-    std::memcpy(g_slot_path[i], temp.c_str(), temp.size() + 1);
-    std::atomic_signal_fence(std::memory_order_seq_cst);  // the path before the flag
-    g_slot_used[i] = 1;
+    int expected = 0;
+    if (!slots_[i].state.compare_exchange_strong(expected, 1)) continue;
+    std::memcpy(slots_[i].path, temp.c_str(), temp.size() + 1);
+    slots_[i].state.store(2);  // the path before the flag
     return i;
   }
   return -1;
 }
 
-void ReleaseSlot(int slot) {
-  if (slot < 0) return;
-  std::lock_guard<std::mutex> lock(g_slot_mutex);
-  g_slot_used[slot] = 0;
+void OutputGuard::ReleaseTemporary(int slot) noexcept {
+  if (slot >= 0 && slot < kSlots) slots_[slot].state.store(0);
 }
 
-extern "C" void RemoveTemporariesAndRaise(int signal_number) {
+void OutputGuard::RemoveTemporaries() const noexcept {
   for (int i = 0; i < kSlots; ++i) {
-    if (g_slot_used[i]) unlink(g_slot_path[i]);
+    if (slots_[i].state.load() == 2) unlink(slots_[i].path);
   }
-  struct sigaction action;
-  std::memset(&action, 0, sizeof(action));
-  action.sa_handler = SIG_DFL;
-  sigemptyset(&action.sa_mask);
-  sigaction(signal_number, &action, nullptr);
-  raise(signal_number);
 }
+
+std::string WriteErrorText(int error) {
+  switch (error) {
+    case EFBIG:
+      return "the file grew past the largest file allowed (the size limit for files, "
+             "'ulimit -f', or the file system's)";
+    case ENOSPC:
+      return "no space left on the file system";
+    case EDQUOT:
+      return "the disk quota is exhausted";
+    case EIO:
+      return "input/output error (the disk or network file system failed)";
+    case EPIPE:
+      return "the reader closed the pipe";
+    default:
+      return ErrnoText(error);
+  }
+}
+
+namespace {
 
 // One temporary being written; removed on destruction unless committed.
 struct Temporary {
   std::string path;
   std::string temp;
+  OutputGuard* guard = nullptr;
   int slot = -1;
   bool renamed = false;
   ~Temporary() {
     if (!temp.empty() && !renamed) unlink(temp.c_str());
-    ReleaseSlot(slot);
+    if (guard) guard->ReleaseTemporary(slot);
   }
 };
 
-void WriteTemporary(const OutputFile& file, Temporary* out) {
+void WriteTemporary(const OutputFile& file, OutputGuard* guard, Temporary* out) {
   const std::string cannot = "cannot write '" + file.path + "': ";
   out->path = file.path;
   const std::string temp = TemporaryPathFor(file.path);
-  out->slot = TakeSlot(temp);
+  out->guard = guard;
+  if (guard) out->slot = guard->TrackTemporary(temp);
   const int flags = O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC | O_NOFOLLOW;
   int fd = open(temp.c_str(), flags, 0666);
   if (fd < 0 && errno == EEXIST) {
@@ -105,11 +145,11 @@ void WriteTemporary(const OutputFile& file, Temporary* out) {
     unlink(temp.c_str());
     fd = open(temp.c_str(), flags, 0666);
   }
-  if (fd < 0) Fail(cannot + ErrnoText(errno));
+  if (fd < 0) Fail(cannot + WriteErrorText(errno));
   out->temp = temp;
   const auto fail = [&](int error) {
     close(fd);
-    Fail(cannot + ErrnoText(error));
+    Fail(cannot + WriteErrorText(error));
   };
   // A replaced file keeps its permissions.
   struct stat old_info;
@@ -124,7 +164,7 @@ void WriteTemporary(const OutputFile& file, Temporary* out) {
     written += static_cast<std::size_t>(put);
   }
   if (fsync(fd) != 0) fail(errno);
-  if (close(fd) != 0) Fail(cannot + ErrnoText(errno));
+  if (close(fd) != 0) Fail(cannot + WriteErrorText(errno));
 }
 
 void SyncFolder(const std::string& path) {
@@ -139,14 +179,7 @@ void SyncFolder(const std::string& path) {
 
 }  // namespace
 
-void NoteInputFile(const std::string& path) {
-  struct stat info;
-  if (stat(path.c_str(), &info) != 0) return;
-  std::lock_guard<std::mutex> lock(InputsMutex());
-  Inputs().emplace(FileId{info.st_dev, info.st_ino}, path);
-}
-
-void CheckOutputPath(const std::string& path) {
+void CheckOutputPath(const std::string& path, OutputGuard* guard) {
   if (path.empty()) Fail("output: empty file name");
   if (path.find('\0') != std::string::npos) Fail("output: the file name holds a NUL byte");
   struct stat info;
@@ -164,19 +197,7 @@ void CheckOutputPath(const std::string& path) {
     Fail("cannot write '" + path +
          "': it is a device, FIFO or socket, not a regular file; refusing to replace it");
   }
-  std::lock_guard<std::mutex> lock(InputsMutex());
-  const auto input = Inputs().find(FileId{info.st_dev, info.st_ino});
-  if (input != Inputs().end()) {
-    // The input is still that file (not deleted, its inode reused by this one)?
-    struct stat again;
-    if (stat(input->second.c_str(), &again) != 0 || again.st_dev != info.st_dev ||
-        again.st_ino != info.st_ino) {
-      Inputs().erase(input);
-      return;
-    }
-    Fail("cannot write '" + path + "': it is one of this command's inputs ('" + input->second +
-         "'); choose another output name");
-  }
+  if (guard) guard->CheckNotInput(path, info.st_dev, info.st_ino);
 }
 
 std::string TemporaryPathFor(const std::string& path) {
@@ -187,18 +208,18 @@ std::string TemporaryPathFor(const std::string& path) {
   return (p.parent_path() / (name + suffix)).string();
 }
 
-void WriteFileSetAtomic(const std::vector<OutputFile>& files) {
-  for (const OutputFile& file : files) CheckOutputPath(file.path);
+void WriteFileSetAtomic(const std::vector<OutputFile>& files, OutputGuard* guard) {
+  for (const OutputFile& file : files) CheckOutputPath(file.path, guard);
   for (std::size_t i = 0; i < files.size(); ++i) {
     for (std::size_t j = 0; j < i; ++j) {
       if (std::filesystem::weakly_canonical(files[i].path) ==
           std::filesystem::weakly_canonical(files[j].path)) {
-        Fail("cannot write '" + files[i].path + "' twice in one command");
+        Fail("cannot write '" + files[i].path + "': the same file is given for two outputs");
       }
     }
   }
   std::vector<Temporary> temporaries(files.size());
-  for (std::size_t i = 0; i < files.size(); ++i) WriteTemporary(files[i], &temporaries[i]);
+  for (std::size_t i = 0; i < files.size(); ++i) WriteTemporary(files[i], guard, &temporaries[i]);
   // Two commands writing a set into one folder must not interleave their renames.
   int lock_fd = -1;
   if (files.size() > 1) {
@@ -214,7 +235,7 @@ void WriteFileSetAtomic(const std::vector<OutputFile>& files) {
   } unlock{lock_fd};
   for (Temporary& t : temporaries) {
     if (rename(t.temp.c_str(), t.path.c_str()) != 0) {
-      Fail("cannot write '" + t.path + "': " + ErrnoText(errno));
+      Fail("cannot write '" + t.path + "': " + WriteErrorText(errno));
     }
     t.renamed = true;
   }
@@ -222,8 +243,8 @@ void WriteFileSetAtomic(const std::vector<OutputFile>& files) {
   for (const Temporary& t : temporaries) SyncFolder(t.path);
 }
 
-void WriteFileAtomic(const std::string& path, const std::string& contents) {
-  WriteFileSetAtomic({OutputFile{path, contents}});
+void WriteFileAtomic(const std::string& path, const std::string& contents, OutputGuard* guard) {
+  WriteFileSetAtomic({OutputFile{path, contents}}, guard);
 }
 
 namespace {
@@ -242,14 +263,15 @@ int WriteAll(int fd, const char* data, std::size_t size) {
 
 }  // namespace
 
-StreamOutput::StreamOutput(const std::string& path, std::size_t memory_bytes)
+StreamOutput::StreamOutput(const std::string& path, OutputGuard* guard, std::size_t memory_bytes)
     : path_(path == "-" ? std::string() : path),
       name_(path_.empty() ? "standard output" : path_),
+      guard_(guard),
       memory_bytes_(memory_bytes) {
   if (path_.empty()) return;
-  CheckOutputPath(path_);
+  CheckOutputPath(path_, guard_);
   temp_ = TemporaryPathFor(path_);
-  slot_ = TakeSlot(temp_);
+  if (guard_) slot_ = guard_->TrackTemporary(temp_);
   const int flags = O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC | O_NOFOLLOW;
   fd_ = open(temp_.c_str(), flags, 0666);
   if (fd_ < 0 && errno == EEXIST) {  // left by a killed process that had this id
@@ -258,8 +280,8 @@ StreamOutput::StreamOutput(const std::string& path, std::size_t memory_bytes)
   }
   if (fd_ < 0) {
     const int error = errno;
-    ReleaseSlot(slot_);
-    Fail("cannot write '" + path_ + "': " + ErrnoText(error));
+    if (guard_) guard_->ReleaseTemporary(slot_);
+    Fail("cannot write '" + path_ + "': " + WriteErrorText(error));
   }
   struct stat old_info;  // a replaced file keeps its permissions
   if (stat(path_.c_str(), &old_info) == 0 && S_ISREG(old_info.st_mode)) {
@@ -270,14 +292,14 @@ StreamOutput::StreamOutput(const std::string& path, std::size_t memory_bytes)
 StreamOutput::~StreamOutput() {
   if (fd_ >= 0) close(fd_);
   if (!committed_ && !temp_.empty()) unlink(temp_.c_str());
-  ReleaseSlot(slot_);
+  if (guard_) guard_->ReleaseTemporary(slot_);
 }
 
 void StreamOutput::WriteToFd(const char* data, std::size_t size) {
   if (const int error = WriteAll(fd_, data, size); error != 0) {
     Fail("cannot write '" +
          (path_.empty() ? std::string("a temporary file for standard output") : path_) +
-         "': " + ErrnoText(error));
+         "': " + WriteErrorText(error));
   }
 }
 
@@ -314,27 +336,30 @@ void StreamOutput::Write(const char* data, std::size_t size) {
 void StreamOutput::Commit() {
   if (committed_) return;
   if (!path_.empty()) {
-    if (fsync(fd_) != 0) Fail("cannot write '" + path_ + "': " + ErrnoText(errno));
+    if (fsync(fd_) != 0) Fail("cannot write '" + path_ + "': " + WriteErrorText(errno));
     const int fd = fd_;
     fd_ = -1;
-    if (close(fd) != 0) Fail("cannot write '" + path_ + "': " + ErrnoText(errno));
-    CheckOutputPath(path_);  // still no symlink, device or input put there meanwhile
+    if (close(fd) != 0) Fail("cannot write '" + path_ + "': " + WriteErrorText(errno));
+    CheckOutputPath(path_, guard_);  // still no symlink, device or input put there meanwhile
     if (rename(temp_.c_str(), path_.c_str()) != 0) {
-      Fail("cannot write '" + path_ + "': " + ErrnoText(errno));
+      Fail("cannot write '" + path_ + "': " + WriteErrorText(errno));
     }
     committed_ = true;
     SyncFolder(path_);
     return;
   }
-  committed_ = true;
   if (fd_ < 0) {
-    if (const int error = WriteAll(STDOUT_FILENO, memory_.data(), memory_.size()); error != 0) {
-      Fail("cannot write standard output: " + ErrnoText(error));
-    }
+    WriteStandardOutput(memory_);
+    committed_ = true;
     std::string().swap(memory_);
     return;
   }
-  if (lseek(fd_, 0, SEEK_SET) != 0) Fail("cannot read back standard output: " + ErrnoText(errno));
+  const off_t size = lseek(fd_, 0, SEEK_END);
+  if (size < 0 || lseek(fd_, 0, SEEK_SET) != 0) {
+    Fail("cannot read back standard output: " + ErrnoText(errno));
+  }
+  CheckOutputRoom("", static_cast<unsigned long long>(size));
+  committed_ = true;
   std::vector<char> block(std::size_t{1} << 20);
   for (;;) {
     const ssize_t got = read(fd_, block.data(), block.size());
@@ -343,18 +368,84 @@ void StreamOutput::Commit() {
     if (got == 0) break;
     if (const int error = WriteAll(STDOUT_FILENO, block.data(), static_cast<std::size_t>(got));
         error != 0) {
-      Fail("cannot write standard output: " + ErrnoText(error));
+      Fail("cannot write standard output: " + WriteErrorText(error));
     }
   }
 }
 
-void InstallTemporaryCleanup() {
-  struct sigaction action;
-  std::memset(&action, 0, sizeof(action));
-  action.sa_handler = RemoveTemporariesAndRaise;
-  sigemptyset(&action.sa_mask);
-  for (int s : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&action.sa_mask, s);
-  for (int s : {SIGINT, SIGTERM, SIGHUP}) sigaction(s, &action, nullptr);
+std::string ByteSizeText(unsigned long long bytes) {
+  static constexpr const char* kUnits[] = {"kB", "MB", "GB", "TB", "PB", "EB"};
+  if (bytes < 1000) return std::to_string(bytes) + (bytes == 1 ? " byte" : " bytes");
+  double value = static_cast<double>(bytes);
+  int unit = -1;
+  while (value >= 1000.0 && unit < 5) {
+    value /= 1000.0;
+    ++unit;
+  }
+  char text[32];
+  const bool whole = value >= 10.0 || value == static_cast<double>(static_cast<int>(value));
+  std::snprintf(text, sizeof text, whole ? "%.0f %s" : "%.1f %s", value, kUnits[unit]);
+  return text;
+}
+
+namespace {
+
+// Throws when `bytes` more bytes past `offset` exceed the size limit for files.
+void CheckFileSizeLimit(const std::string& name, unsigned long long offset,
+                        unsigned long long bytes) {
+  struct rlimit limit;
+  if (getrlimit(RLIMIT_FSIZE, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) return;
+  if (offset + bytes > static_cast<unsigned long long>(limit.rlim_cur)) {
+    Fail("cannot write " + name + ": " + ByteSizeText(bytes) +
+         " to write, past the size limit for files (" +
+         ByteSizeText(static_cast<unsigned long long>(limit.rlim_cur)) + ", 'ulimit -f')");
+  }
+}
+
+void CheckFreeSpace(const std::string& name, const struct statvfs& fs, unsigned long long bytes) {
+  if (fs.f_blocks == 0) return;  // a pseudo file system that counts no blocks
+  const unsigned long long free_bytes =
+      static_cast<unsigned long long>(fs.f_bavail) * static_cast<unsigned long long>(fs.f_frsize);
+  if (bytes > free_bytes) {
+    Fail("cannot write " + name + ": " + ByteSizeText(bytes) + " to write, " +
+         ByteSizeText(free_bytes) + " free on its file system");
+  }
+}
+
+}  // namespace
+
+void CheckOutputRoom(const std::string& path, unsigned long long bytes) {
+  if (path.empty() || path == "-") {
+    struct stat info;
+    if (fstat(STDOUT_FILENO, &info) != 0) return;
+    if (S_ISREG(info.st_mode)) {
+      const off_t offset = lseek(STDOUT_FILENO, 0, SEEK_CUR);
+      CheckFileSizeLimit("standard output",
+                         offset > 0 ? static_cast<unsigned long long>(offset) : 0, bytes);
+      struct statvfs fs;
+      if (fstatvfs(STDOUT_FILENO, &fs) == 0) CheckFreeSpace("standard output", fs, bytes);
+    } else if (bytes > StreamOutput::kDefaultMemoryBytes) {
+      const char* dir = std::getenv("TMPDIR");
+      const std::string folder = dir && *dir ? dir : "/tmp";
+      struct statvfs fs;
+      if (statvfs(folder.c_str(), &fs) == 0) {
+        CheckFreeSpace("standard output (held in '" + folder + "' until complete)", fs, bytes);
+      }
+    }
+    return;
+  }
+  const std::string name = "'" + path + "'";
+  CheckFileSizeLimit(name, 0, bytes);
+  const std::string folder = std::filesystem::path(path).parent_path().string();
+  struct statvfs fs;
+  if (statvfs(folder.empty() ? "." : folder.c_str(), &fs) == 0) CheckFreeSpace(name, fs, bytes);
+}
+
+void WriteStandardOutput(const std::string& text) {
+  CheckOutputRoom("", text.size());
+  if (const int error = WriteAll(STDOUT_FILENO, text.data(), text.size()); error != 0) {
+    Fail("cannot write standard output: " + WriteErrorText(error));
+  }
 }
 
 }  // namespace alloycolor

@@ -6,6 +6,7 @@
 #include "alloycolor/color/material_color.h"
 #include "alloycolor/core/composition.h"
 #include "alloycolor/core/error.h"
+#include "alloycolor/core/json.h"
 #include "alloycolor/export/material_files.h"
 
 namespace alloycolor::exports {
@@ -150,11 +151,11 @@ ExportFiles BuildExport(const color::Colorimeter& d65, const ExportMaterial& mat
   }
   if (wanted("f82")) {
     out.files.push_back(
-        {prefix + ".f82.json", F82Document(name, out.summary, generator).dump(2) + "\n"});
+        {prefix + ".f82.json", JsonText(F82Document(name, out.summary, generator), 2) + "\n"});
   }
   if (wanted("gulbrandsen")) {
     out.files.push_back({prefix + ".gulbrandsen.json",
-                         GulbrandsenDocument(name, out.summary, generator).dump(2) + "\n"});
+                         JsonText(GulbrandsenDocument(name, out.summary, generator), 2) + "\n"});
   }
   if (wanted("materialx")) {
     out.files.push_back(

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "alloycolor/core/json.h"
 #include "alloycolor/core/markup.h"
 #include "text.h"
 
@@ -199,7 +200,7 @@ std::string GltfMaterial(const RendererMaterials& m, const std::string& material
                                               {"metallicFactor", 1.0},
                                               {"roughnessFactor", roughness}}},
                                             {"extras", extras}}})}};
-  return doc.dump(2) + "\n";
+  return JsonText(doc, 2) + "\n";
 }
 
 }  // namespace alloycolor::exports

@@ -21,6 +21,7 @@ one-line messages, and an exception raised in one stops the work and propagates.
 
 from __future__ import annotations
 
+import numbers
 import os
 import pathlib
 from typing import Callable, Iterable, Optional, Sequence, Union
@@ -63,6 +64,85 @@ def methods() -> list:
     return _core.methods()
 
 
+def _real(name: str, value) -> float:
+    """value as a float, when it is a real number (not a bool, complex or string)."""
+    if isinstance(value, (bool, np.bool_)):
+        raise Error("%s: %r is a boolean, not a number" % (name, value))
+    if isinstance(value, (complex, np.complexfloating)):
+        raise Error("%s: %r is complex; give a real number" % (name, value))
+    if not isinstance(value, numbers.Real):
+        raise Error("%s: %r is not a number" % (name, value))
+    return float(value)
+
+
+def _fit_setting(name: str, setting: str, value) -> float:
+    """value checked by the library's range for the fit setting ``setting``; errors name
+    ``name``, the keyword it was given as."""
+    v = _real(name, value)
+    _core._check_fit_setting(setting, v, name)
+    return v
+
+
+def _whole(name: str, value, lo: float, hi: float) -> int:
+    """value as an int, when it is a whole number in [lo, hi] (the library's check)."""
+    v = _real(name, value)
+    _core._check_number(name, v, lo, hi, True)
+    return int(v)
+
+
+def _observer(name: str, value) -> int:
+    v = _whole(name, value, 2, 10)
+    if v not in (2, 10):
+        raise Error("%s: %r is not 2 or 10" % (name, value))
+    return v
+
+
+def _path(name: str, value) -> str:
+    if not isinstance(value, (str, os.PathLike)):
+        raise Error("%s: %r is not a file path" % (name, value))
+    path = os.fspath(value)
+    if not isinstance(path, str):
+        raise Error("%s: give the path as a str, not %r" % (name, value))
+    return path
+
+
+def _callable(name: str, value):
+    if value is not None and not callable(value):
+        raise Error("%s: %r is not callable" % (name, value))
+    return value
+
+
+def _flag(name: str, value) -> bool:
+    if not isinstance(value, (bool, np.bool_)):
+        raise Error("%s: %r is not True or False" % (name, value))
+    return bool(value)
+
+
+def _text(name: str, value) -> str:
+    if not isinstance(value, str):
+        raise Error("%s: %r is not a string" % (name, value))
+    return value
+
+
+def _holds_bool(value) -> bool:
+    """True for a bool, or a (nested) list or tuple holding one (numpy turns [0.5, False]
+    into floats)."""
+    if isinstance(value, (list, tuple)):
+        return any(_holds_bool(v) for v in value)
+    return isinstance(value, (bool, np.bool_))
+
+
+def _real_array(name: str, value) -> np.ndarray:
+    arr = np.asarray(value)
+    if arr.dtype.kind == "b" or _holds_bool(value):
+        raise Error("%s: booleans are not numbers" % name)
+    if arr.dtype.kind == "c":
+        raise Error("%s: complex values; give real numbers" % name)
+    if arr.dtype.kind not in "iuf":
+        raise Error("%s: %r is not a number or an array of numbers" % (name, value))
+    return np.asarray(arr, dtype=float)
+
+
 def _columns_text(columns) -> str:
     if columns is None:
         return ""
@@ -77,14 +157,17 @@ def _columns_text(columns) -> str:
 def _render_args(shape, size, lighting, roughness, background, illuminant, observer, direct,
                  linear) -> tuple:
     """The compiled renderer's arguments after the material's own."""
-    return (shape, int(size), lighting, float(roughness), background or "", illuminant,
-            int(observer), bool(direct), bool(linear))
+    return (_text("shape", shape), _whole("size", size, 1, _core._max_tile_size),
+            _text("lighting", lighting), _real("roughness", roughness),
+            "" if background is None else _text("background", background),
+            _text("illuminant", illuminant), _observer("observer", observer),
+            _flag("direct", direct), _flag("linear", linear))
 
 
 def _export_args(prefix, format, scene_dir, roughness) -> tuple:
     """The compiled export's arguments after the material's own."""
-    return (os.fspath(prefix), format, "" if scene_dir is None else os.fspath(scene_dir),
-            float(roughness))
+    return (_path("prefix", prefix), _text("format", format),
+            "" if scene_dir is None else _path("scene_dir", scene_dir), _real("roughness", roughness))
 
 
 class Spectrum:
@@ -130,7 +213,7 @@ def read_nk(path: Union[str, os.PathLike], columns=None) -> Spectrum:
     TSV, whitespace; wavelength, energy or wavenumber; n, k or eps1, eps2). ``columns``
     chooses one n,k pair of a multi-sample file: ``"n6,k6"``, ``("n6", "k6")`` or 1-based
     ``(2, 3)``. Raises Error naming the file and line on bad input."""
-    core, warnings = _core._read_nk(os.fspath(path), _columns_text(columns))
+    core, warnings = _core._read_nk(_path("path", path), _columns_text(columns))
     return Spectrum(core, warnings)
 
 
@@ -140,7 +223,7 @@ class Dataset:
 
     def __init__(self, path_or_name: Union[str, os.PathLike, None] = None, *, _core_set=None):
         if _core_set is None:
-            arg = os.fspath(path_or_name)
+            arg = _path("path_or_name", path_or_name)
             self._given = arg  # as `alloycolor --data` would be given it
             bundled = pathlib.Path(data_root()) / arg
             if not os.path.exists(arg) and arg and not os.path.isabs(arg) and bundled.exists():
@@ -169,7 +252,7 @@ class Dataset:
         return out
 
     def _match(self, x) -> float:
-        value = self._core.parse_composition(x) if isinstance(x, str) else float(x)
+        value = self._core.parse_composition(x) if isinstance(x, str) else _real("x", x)
         known = self._core.sample_x(value)
         if known is not None:
             return known
@@ -204,6 +287,14 @@ def _broadcast_x(model, x) -> np.ndarray:
     arr = np.asarray(x)
     if arr.dtype.kind in "US":
         return np.vectorize(model.parse_composition, otypes=[float])(arr)
+    if arr.dtype.kind == "b" or _holds_bool(x):
+        raise Error("x: a composition is an atomic fraction (a real number or a string such "
+                    "as \"75wt%\"), not a boolean")
+    if arr.dtype.kind == "c":
+        raise Error("x: a composition is an atomic fraction, a real number, not complex")
+    if arr.dtype.kind not in "iuf":
+        raise Error("x: %r is not a composition (a number in [0, 1] or a string such as "
+                    "\"75wt%%\")" % (x,))
     return np.asarray(arr, dtype=float)
 
 
@@ -232,7 +323,7 @@ class Model:
 
     def _optics(self, x, lambda_nm, index: bool) -> np.ndarray:
         xs = _broadcast_x(self, x)
-        lam = np.asarray(lambda_nm, dtype=float)
+        lam = _real_array("lambda_nm", lambda_nm)
         out = self._core._optics(xs.ravel(), lam.ravel(), index)
         return out.reshape(xs.shape + lam.shape)
 
@@ -305,7 +396,7 @@ class Model:
 
     def save(self, path: Union[str, os.PathLike]) -> None:
         """Writes the versioned JSON model file (atomically: all or nothing)."""
-        self._core.save(os.fspath(path))
+        self._core.save(_path("path", path))
 
     def to_json(self) -> dict:
         """The model file's content as Python objects."""
@@ -330,13 +421,15 @@ class Model:
     def spectra(self, x, material: Optional[str] = None) -> dict:
         """n, k on the export grid (360-830 nm, 5 nm): {"lambda_nm", "n", "k", "notes"}."""
         xv = float(_broadcast_x(self, x))
-        return self._core._spectra(xv, material or self._material(xv))
+        return self._core._spectra(xv, self._material(xv) if material is None
+                                   else _text("material", material))
 
     def write_spd(self, x, eta_path, k_path, material: Optional[str] = None) -> None:
         """Writes the eta and k .spd files (wavelength_nm value) pbrt-v4 and Mitsuba 3 read."""
         xv = float(_broadcast_x(self, x))
-        self._core._write_spd(xv, material or self._material(xv), os.fspath(eta_path),
-                              os.fspath(k_path))
+        self._core._write_spd(xv, self._material(xv) if material is None
+                              else _text("material", material), _path("eta_path", eta_path),
+                              _path("k_path", k_path))
 
     def export(self, x, prefix: Union[str, os.PathLike], format: str = "all",
                scene_dir: Union[None, str, os.PathLike] = None, roughness: float = 0.0) -> dict:
@@ -384,19 +477,48 @@ def fit(dataset: Union[Dataset, str], method: str = "auto", *, degree: Optional[
     lambda_range_nm: (from, to, step) of the fit grid; covariance: compute the physical
     fit's parameter covariance; progress: called with one-line messages. Every method
     fitted to three compositions or more carries a cross-validated uncertainty."""
+    method = _text("method", method)
+    degree = -1 if degree is None else int(_fit_setting("degree", "degree", degree))
+    smoothing = -1.0 if smoothing is None else _fit_setting("smoothing", "smoothing", smoothing)
+    space = "" if space is None else _text("space", space)
+    terms = _text("terms", terms)
+    covariance = _flag("covariance", covariance)
+    if progress is not None and not callable(progress):
+        raise Error("progress: %r is not callable" % (progress,))
+    lo = hi = step = 0.0
+    if lambda_range_nm is not None:
+        lo, hi, step = _lambda_range(lambda_range_nm)
     if not isinstance(dataset, Dataset):
         dataset = Dataset(dataset)
-    lo, hi, step = (0.0, 0.0, 0.0) if lambda_range_nm is None else map(float, lambda_range_nm)
-    return Model(_core._fit(dataset._core, method, _optional(degree, -1),
-                            float(_optional(smoothing, -1.0)), _optional(space, ""), terms,
-                            lo, hi, step,
-                            bool(covariance), progress),
+    return Model(_core._fit(dataset._core, method, degree, smoothing, space, terms, lo, hi,
+                            step, covariance, progress),
                  "built from data " + dataset._given)
+
+
+# The most nodes a fit grid has (the library's bound, as ``alloycolor fit`` keeps it).
+_MAX_FIT_GRID_NODES = _core._max_fit_grid_nodes
+
+
+def _lambda_range(value) -> tuple:
+    """(from, to, step) in nm, each checked by the library's ranges."""
+    if isinstance(value, (str, bytes)) or np.ndim(value) != 1 or len(value) != 3:
+        raise Error("lambda_range_nm: give (from, to, step) in nm, three numbers, not %r"
+                    % (value,))
+    lo = _fit_setting("lambda_range_nm[0] (from)", "lambda_from_nm", value[0])
+    hi = _fit_setting("lambda_range_nm[1] (to)", "lambda_to_nm", value[1])
+    step = _fit_setting("lambda_range_nm[2] (step)", "lambda_step_nm", value[2])
+    if not lo < hi:
+        raise Error("lambda_range_nm: from %g nm is not below to %g nm" % (lo, hi))
+    if (hi - lo) / step > _MAX_FIT_GRID_NODES:
+        raise Error("lambda_range_nm: a step of %g nm over %g-%g nm makes over %d grid nodes; "
+                    "give a larger step" % (step, lo, hi, _MAX_FIT_GRID_NODES))
+    return lo, hi, step
 
 
 def load_model(path: Union[str, os.PathLike]) -> Model:
     """Reads a model file written by ``alloycolor fit --out`` or :meth:`Model.save`."""
-    return Model(_core._load_model(os.fspath(path)), "from " + os.fspath(path))
+    path = _path("path", path)
+    return Model(_core._load_model(path), "from " + path)
 
 
 _COLOR_KEYS = ("xyz", "lab", "linear_srgb", "srgb8", "paper_rgb")
@@ -428,11 +550,16 @@ def color(source, x=None, angle_deg=0.0, illuminant="D65", observer=2, sigma=Fal
         if x is not None:
             raise Error("color: a measured spectrum has one composition; x must be None")
         xs = np.zeros(())
+    sigma = _flag("sigma", sigma)
+    exact = _flag("exact", exact)
     ill = np.asarray(illuminant, dtype=object)
+    for name in ill.ravel():
+        _text("illuminant", name)
     obs = np.asarray(observer)
-    if obs.dtype.kind not in "iuf" or np.any(obs != np.round(obs)):
+    if (obs.dtype.kind not in "iuf" or _holds_bool(observer)
+            or not np.all(np.isin(obs, (2, 10)))):
         raise Error("observer: %r is not 2 or 10" % (observer,))
-    xs, ang, ill_b, obs_b = np.broadcast_arrays(xs, np.asarray(angle_deg, dtype=float), ill, obs)
+    xs, ang, ill_b, obs_b = np.broadcast_arrays(xs, _real_array("angle_deg", angle_deg), ill, obs)
     shape = xs.shape
     n = xs.size
     flat_x, flat_a = xs.ravel(), ang.ravel()
@@ -454,7 +581,7 @@ def color(source, x=None, angle_deg=0.0, illuminant="D65", observer=2, sigma=Fal
         if is_model:
             r = source._core._color(np.ascontiguousarray(flat_x[idx]),
                                     np.ascontiguousarray(flat_a[idx]), ill_name, obs_deg,
-                                    bool(sigma), bool(exact))
+                                    sigma, exact)
         else:
             r = source._core._color(np.ascontiguousarray(flat_a[idx]), ill_name, obs_deg)
         for key in _COLOR_KEYS:
@@ -488,7 +615,7 @@ def validate(dataset: Union[Dataset, str], methods: Union[None, str, Sequence[st
     else:
         if isinstance(holdout, (str, os.PathLike)) or not isinstance(holdout, Iterable):
             holdout = [holdout]
-        names = [os.fspath(v) if isinstance(v, (str, os.PathLike)) else repr(float(v))
+        names = [os.fspath(v) if isinstance(v, (str, os.PathLike)) else repr(_real("holdout", v))
                  for v in holdout]
         if not names:
             raise Error("holdout: no composition given")
@@ -499,7 +626,12 @@ def validate(dataset: Union[Dataset, str], methods: Union[None, str, Sequence[st
         methods = [m["name"] for m in _core.methods()] + ["auto"]
     elif isinstance(methods, str):
         methods = [m.strip() for m in methods.split(",")]
+    for m in methods:
+        _text("methods", m)
     return _core._validate(dataset._core, list(methods), names, mode,
-                           [float(a) for a in np.atleast_1d(angles_deg)], illuminant,
-                           int(observer), "" if html is None else os.fspath(html),
-                           "" if json is None else os.fspath(json), progress)
+                           [float(a) for a in np.atleast_1d(_real_array("angles_deg",
+                                                                        angles_deg))],
+                           _text("illuminant", illuminant), _observer("observer", observer),
+                           "" if html is None else _path("html", html),
+                           "" if json is None else _path("json", json),
+                           _callable("progress", progress))

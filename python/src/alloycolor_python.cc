@@ -6,7 +6,12 @@
 // wrapper in python/alloycolor/__init__.py adds numpy broadcasting and the data root.
 // Long work (fits, validation, large colour arrays, rendering) runs without the GIL; a
 // progress callback, when given, is called with the GIL held again. alloycolor::Error
-// becomes the Python exception alloycolor.Error (a ValueError) with the same message.
+// becomes the Python exception alloycolor.Error (a ValueError) with the same message, but
+// for the command-line spellings some library messages still carry (--extrapolate,
+// --smoothing, --columns N,K), which are put in the package's words (PythonWords).
+// Nothing here keeps an OutputGuard: the package notes no inputs (m = load_model(p);
+// m.save(p) replaces the file, atomically), and files written as a set (write_spd's eta
+// and k) are refused when two are one file.
 #include <pybind11/functional.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -18,6 +23,7 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -28,9 +34,11 @@
 #include "alloycolor/core/dataset.h"
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/io.h"
+#include "alloycolor/core/json.h"
 #include "alloycolor/core/output.h"
 #include "alloycolor/core/parallel.h"
 #include "alloycolor/core/permittivity.h"
+#include "alloycolor/core/setting.h"
 #include "alloycolor/export/export_files.h"
 #include "alloycolor/export/spectral_export.h"
 #include "alloycolor/fit/methods.h"
@@ -339,7 +347,31 @@ py::array_t<std::complex<double>> ModelOptics(const AlloyModel& model, const Arr
 }
 
 py::object JsonToPython(const nlohmann::json& doc) {
-  return py::module_::import("json").attr("loads")(doc.dump());
+  return py::module_::import("json").attr("loads")(JsonText(doc));
+}
+
+// A library message in the package's words: the command-line spellings of settings that
+// the library's messages still name replaced by the keywords of this package.
+std::string PythonWords(std::string message) {
+  static constexpr std::pair<std::string_view, std::string_view> kSpellings[] = {
+      {" (use --extrapolate)",
+       " (the Python package evaluates a model within its training range only)"},
+      {"--lambda-from/--lambda-to/--lambda-step: ", "lambda_range_nm: "},
+      {"--lambda-from/--lambda-to: ", "lambda_range_nm: "},
+      {"--lambda-step: ", "lambda_range_nm: step: "},
+      {"--smoothing: ", "smoothing: "},
+      {"--space: ", "space: "},
+      {"--degree: ", "degree: "},
+      {"choose the columns with --columns N,K", "choose the columns with columns=(N, K)"},
+      {"`alloycolor fit --method smooth`", "alloycolor.fit(data, \"smooth\")"},
+  };
+  for (const auto& [flag, words] : kSpellings) {
+    for (std::size_t at = message.find(flag); at != std::string::npos;
+         at = message.find(flag, at + words.size())) {
+      message.replace(at, flag.size(), words);
+    }
+  }
+  return message;
 }
 
 py::dict SpectrumDict(const NkSpectrum& nk, const std::vector<std::string>& warnings) {
@@ -426,6 +458,28 @@ py::object WriteExport(const MaterialOn& material_on, const std::string& prefix,
 PYBIND11_MODULE(_alloycolor, m) {
   m.doc() = "Compiled core of the alloycolor package; use the alloycolor package itself.";
   py::register_exception<Error>(m, "Error", PyExc_ValueError);
+  // Registered after, so tried first: the same exception, the message in Python's words.
+  py::register_exception_translator([](std::exception_ptr thrown) {
+    try {
+      if (thrown) std::rethrow_exception(thrown);
+    } catch (const Error& e) {
+      const py::object error = py::module_::import("alloycolor._alloycolor").attr("Error");
+      PyErr_SetString(error.ptr(), PythonWords(e.what()).c_str());
+    }
+  });
+  m.def("_python_words", &PythonWords);
+  m.attr("_max_fit_grid_nodes") = kMaxFitGridNodes;
+  m.attr("_max_tile_size") = render::kMaxTileSize;
+  // The library's check of a number against a range, named as the caller gave it.
+  m.def("_check_number", [](const std::string& name, double value, double lo, double hi,
+                            bool whole) { CheckNumber(name, value, NumberRange{lo, hi, whole}); });
+
+  // The library's checks of the fit's numeric settings, by their names ("degree", ...).
+  // `label` is the keyword the value was given as ("degree", "lambda_range_nm[2] (step)").
+  m.def("_check_fit_setting",
+        [](const std::string& setting, double value, const std::string& label) {
+          CheckNumber(label, value, FitSettingRange(setting));
+        });
 
   m.def("_set_data_root", [](const std::string& root) { DataRootStorage() = root; });
   m.def("_data_root", []() { return DataRootStorage(); });
@@ -615,8 +669,8 @@ PYBIND11_MODULE(_alloycolor, m) {
         a.CheckInRange(x);
         const exports::ConductorSpectra s = exports::ModelSpectra(a, x, material);
         const std::string eta = exports::SpdText(s, true), k = exports::SpdText(s, false);
-        WriteFileAtomic(eta_path, eta);
-        WriteFileAtomic(k_path, k);
+        // One set: both replaced or neither; one file given twice is refused.
+        WriteFileSetAtomic({{eta_path, eta}, {k_path, k}});
       });
 
   m.def("_validate",
@@ -658,8 +712,10 @@ PYBIND11_MODULE(_alloycolor, m) {
             const validate::ValidationReport report =
                 validate::ComputeValidation(dataset, splits, colorimeter, options, callback);
             json = validate::ValidationJson(report);
-            if (!html_path.empty()) WriteFileAtomic(html_path, validate::ValidationHtml(report));
-            if (!json_path.empty()) WriteFileAtomic(json_path, json.dump(2) + "\n");
+            std::vector<OutputFile> files;
+            if (!html_path.empty()) files.push_back({html_path, validate::ValidationHtml(report)});
+            if (!json_path.empty()) files.push_back({json_path, JsonText(json, 2) + "\n"});
+            if (!files.empty()) WriteFileSetAtomic(files);
           }
           return JsonToPython(json);
         });

@@ -153,7 +153,7 @@ def test_smooth_fit_in_the_space_given_equals_command_line(binary, au_ag, tmp_pa
     lam = np.linspace(380, 780, 41)
     np.testing.assert_allclose(ac.load_model(cli_model).nk([0.3, 0.85], lam),
                                model.nk([0.3, 0.85], lam), atol=1e-9)
-    with pytest.raises(ac.Error, match="--space"):
+    with pytest.raises(ac.Error, match="^space: 'magic' is none of eps, log_eps$"):
         ac.fit(au_ag, "smooth", space="magic")
 
 

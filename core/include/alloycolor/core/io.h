@@ -35,6 +35,8 @@
 
 namespace alloycolor {
 
+class OutputGuard;
+
 // The largest n or k a reader accepts. Metals reach k ~ 1e3 in the far infrared; above
 // 1e77, |eps|^2 overflows a double and reflectance becomes NaN.
 inline constexpr double kMaxOpticalConstant = 1e6;
@@ -97,14 +99,17 @@ std::string NkCsvText(const std::vector<double>& lambda_nm, const std::vector<do
 inline constexpr long long kMaxInputFileBytes = 256LL << 20;
 
 // Whole file as a string; throws Error naming the file when it cannot be read, is not a
-// regular file (a FIFO, a device) or is over kMaxInputFileBytes. The file is noted as an
-// input of the command (output.h), so that no output replaces it.
+// regular file (a FIFO, a device) or is over kMaxInputFileBytes. Reading has no other
+// effect: a program that must not overwrite its inputs notes them in its OutputGuard
+// (output.h).
 std::string ReadFileText(const std::string& path);
 
 // Writes through a temporary file in the same folder renamed into place, so that a
 // failed or interrupted write never leaves a damaged file nor destroys the old one;
-// refuses inputs and special files (output.h, WriteFileSetAtomic, which implements it).
-void WriteFileAtomic(const std::string& path, const std::string& contents);
+// refuses special files, and with a guard the guard's inputs (output.h,
+// WriteFileSetAtomic, which implements it).
+void WriteFileAtomic(const std::string& path, const std::string& contents,
+                     OutputGuard* guard = nullptr);
 
 // FNV-1a 64-bit checksum of bytes, as 16 hex digits.
 std::string Fnv1a64Hex(const std::string& bytes);

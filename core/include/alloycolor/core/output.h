@@ -1,10 +1,15 @@
-// The one way the program writes files, so that no command ever loses the user's data:
-//  - every file a command reads through ReadFileText is noted as an input (device and
-//    inode), and an output that is one of them (the same file by any path, hard links
-//    included) is refused before anything is written (an input since deleted, whose inode
-//    a new file may reuse, no longer counts);
+// The one way files are written, so that no command ever loses the user's data:
+//  - an OutputGuard, owned by the program and handed to the writers, holds what the
+//    running command read (NoteInput: device and inode), so that an output that is one
+//    of them (the same file by any path, hard links included) is refused before anything
+//    is written (an input since deleted, whose inode a new file may reuse, no longer
+//    counts); reading a file has no side effect: the program notes its inputs itself;
+//  - the guard also holds the temporaries in flight, so that the program's signal
+//    handlers can remove them (RemoveTemporaries is async-signal-safe: fixed slots,
+//    unlink only); the library installs no handler and keeps no process state;
 //  - an existing output that is not a regular file (a symlink, a device such as
-//    /dev/null, a FIFO, a folder) is refused, never replaced nor written through;
+//    /dev/null, a FIFO, a folder) is refused, never replaced nor written through, with
+//    or without a guard;
 //  - each file is written to a temporary in its own folder, flushed, then renamed over
 //    the old one; a set of files (a report's JSON and HTML, an export's files) is written
 //    as a set: every temporary first, then the renames, so a failure while writing leaves
@@ -12,17 +17,17 @@
 //    sets into one folder do not mix them);
 //  - a temporary's name is the output's name plus ".~PID" (the output's name cut short
 //    when the two would pass NAME_MAX, 255 bytes), so any valid output name works;
+//  - a write that fails (EFBIG past `ulimit -f`, ENOSPC, EDQUOT, EIO, EPIPE) removes the
+//    temporary and throws one Error naming the output and the cause;
 //  - an output too large to hold (a sweep's millions of rows) is streamed through
 //    StreamOutput: to the same kind of temporary, renamed (or copied to standard output)
-//    only once complete;
-//  - InstallTemporaryCleanup (called once by the program) makes SIGINT, SIGTERM and
-//    SIGHUP unlink the temporaries being written (async-signal-safe: fixed slots, unlink
-//    only) before the signal takes its default effect.
+//    only once complete.
 // Errors are alloycolor::Error naming the output path.
 #ifndef ALLOYCOLOR_CORE_OUTPUT_H_
 #define ALLOYCOLOR_CORE_OUTPUT_H_
 
 #include <cstddef>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -35,34 +40,83 @@ struct OutputFile {
   std::string contents;
 };
 
-// Notes that the running command read `path` (ReadFileText calls this).
-void NoteInputFile(const std::string& path);
+// What one command read and what it is writing: the inputs no output may replace, and
+// the temporaries a signal handler must remove. Owned by the program (one per process or
+// per command) and handed to the writers; thread-safe.
+class OutputGuard {
+ public:
+  // The most temporaries tracked at once, and the longest path tracked (longer ones are
+  // written, but not removed on a signal).
+  static constexpr int kSlots = 64;
+  static constexpr std::size_t kSlotBytes = 4096;
 
-// Throws Error when `path` names a noted input, or exists and is not a regular file.
-void CheckOutputPath(const std::string& path);
+  OutputGuard();
+  ~OutputGuard();
+  OutputGuard(const OutputGuard&) = delete;
+  OutputGuard& operator=(const OutputGuard&) = delete;
+
+  // Notes that the command reads `path`; a path that does not exist is ignored.
+  void NoteInput(const std::string& path);
+  // Throws Error when `path` (already lstat'ed as `info`'s device and inode) is a noted
+  // input that is still that file.
+  void CheckNotInput(const std::string& path, unsigned long long device, unsigned long long inode);
+
+  // Tracks a temporary being written; returns its slot, or -1 when untracked.
+  int TrackTemporary(const std::string& temp) noexcept;
+  void ReleaseTemporary(int slot) noexcept;
+  // Unlinks every tracked temporary. Async-signal-safe: call it from a signal handler.
+  void RemoveTemporaries() const noexcept;
+
+ private:
+  struct Slot;
+  struct Inputs;
+  std::unique_ptr<Slot[]> slots_;
+  std::unique_ptr<Inputs> inputs_;
+};
+
+// Throws Error when `path` exists and is not a regular file, or (with a guard) names one
+// of the guard's inputs.
+void CheckOutputPath(const std::string& path, OutputGuard* guard);
 
 // Writes the files as a set (temporaries first, then renames); throws Error naming the
-// file at fault, leaving every old file as it was when any temporary fails.
-void WriteFileSetAtomic(const std::vector<OutputFile>& files);
+// file at fault, leaving every old file as it was when any temporary fails. With a guard,
+// inputs are refused and the temporaries are tracked for its signal handlers.
+void WriteFileSetAtomic(const std::vector<OutputFile>& files, OutputGuard* guard = nullptr);
 
 // The temporary a file is written through: same folder, name within NAME_MAX.
 std::string TemporaryPathFor(const std::string& path);
 
-// Installs the SIGINT, SIGTERM and SIGHUP handlers that remove temporaries in flight.
-void InstallTemporaryCleanup();
+// The reason a write failed, in words that tell the user what to do about it (EFBIG:
+// the size limit for files, `ulimit -f`; ENOSPC: the file system is full; ...).
+std::string WriteErrorText(int error_number);
+
+// Throws Error naming the output when `bytes` more bytes cannot fit: past the size limit
+// for files (RLIMIT_FSIZE, `ulimit -f`) or the free space of the file system that holds
+// it (statvfs). `path` empty or "-" is standard output, checked when it is a regular
+// file (a pipe or terminal has no such limit; what StreamOutput holds past its memory
+// goes to $TMPDIR, which is checked instead).
+void CheckOutputRoom(const std::string& path, unsigned long long bytes);
+
+// Writes `text` to standard output whole or not at all: CheckOutputRoom first, then every
+// byte; throws Error "cannot write standard output: ..." (EPIPE included).
+void WriteStandardOutput(const std::string& text);
+
+// "70 GB", "12 MB", "512 bytes": a size for messages (decimal units).
+std::string ByteSizeText(unsigned long long bytes);
 
 // One output written as a stream, all or nothing, in bounded memory: a file (`path`), or
 // standard output (`path` empty or "-"). The text goes to a temporary — for a file, the
 // temporary beside it that WriteFileSetAtomic would use (checked as CheckOutputPath
-// first, removed on a signal); for standard output, memory up to `memory_bytes`, then an
-// unlinked file in $TMPDIR (or /tmp) — and only Commit() makes it appear: the temporary
-// is renamed over the file, or copied to standard output. Destroyed without Commit() (an
-// error half-way), it leaves nothing: no partial file, not a byte on standard output.
-// Errors are alloycolor::Error naming the output ("standard output" for stdout).
+// first, tracked by the guard for its signal handlers); for standard output, memory up to
+// `memory_bytes`, then an unlinked file in $TMPDIR (or /tmp) — and only Commit() makes it appear:
+// the temporary is renamed over the file, or copied to standard output. Destroyed without Commit()
+// (an error half-way), it leaves nothing: no partial file, not a byte on standard output. Errors
+// are alloycolor::Error naming the output ("standard output" for stdout).
 class StreamOutput {
  public:
   static constexpr std::size_t kDefaultMemoryBytes = std::size_t{64} << 20;
-  explicit StreamOutput(const std::string& path, std::size_t memory_bytes = kDefaultMemoryBytes);
+  explicit StreamOutput(const std::string& path, OutputGuard* guard = nullptr,
+                        std::size_t memory_bytes = kDefaultMemoryBytes);
   ~StreamOutput();
   StreamOutput(const StreamOutput&) = delete;
   StreamOutput& operator=(const StreamOutput&) = delete;
@@ -82,7 +136,8 @@ class StreamOutput {
   std::string name_;
   std::string temp_;  // the named temporary of a file output
   int fd_ = -1;       // the temporary's descriptor, once there is one
-  int slot_ = -1;     // the signal handler's slot for temp_
+  OutputGuard* guard_;
+  int slot_ = -1;  // the guard's slot for temp_
   std::size_t memory_bytes_;
   std::string memory_;  // standard output: held here until past memory_bytes
   bool committed_ = false;

@@ -101,8 +101,8 @@ struct PredictionError {
   // allow (docs/model-format.md):
   //  - misfit[i][j]: (measured eps - model eps) / |model eps| at compositions[i] (the mean
   //    of the samples there) and misfit_lambda_nm[j]; between compositions interpolated
-  //    linearly, times one sign (+1, -1 in turn) per draw, so that half the draws at a
-  //    training composition land on the measurement the model misses;
+  //    linearly and added to every draw, so that at a training composition the draws land
+  //    on the measurement the model misses (the colour sigma there is at least the miss);
   //  - scatter[r][j]: a replicate sample's relative deviation from its composition's mean
   //    (times sqrt(n / (n - 1))), taken in turn by the draws with a sign of their own;
   //  - precision: a measurement's relative eps error (the resolution of the data's

@@ -88,7 +88,7 @@ void ReportChanges(const AlloyModel& old_model, const AlloyModel& model) {
 }
 
 void Run(const FitOptions& o) {
-  SetParallelTaskThreads(o.threads);
+  ThreadBudget threads(o.threads);
   if (o.out.empty()) throw Error("--out: give the model file to write");
   namespace fs = std::filesystem;
   std::error_code ec;
@@ -126,6 +126,7 @@ void Run(const FitOptions& o) {
   }
   const auto start = std::chrono::steady_clock::now();
   fit::FitSettings settings;
+  settings.threads = &threads;
   settings.degree = o.degree;
   settings.smoothing = o.smoothing;
   settings.space = o.space;

@@ -200,7 +200,7 @@ std::string SummaryText(const nlohmann::json& report) {
 }
 
 void Run(const ValidateOptions& o) {
-  SetParallelTaskThreads(o.threads);
+  ThreadBudget threads(o.threads);
   if (o.out.empty()) throw Error("--out: give the report folder");
   const Dataset dataset = LoadDatasetArg(o.data_dir);
   if (!o.quiet) {
@@ -208,7 +208,8 @@ void Run(const ValidateOptions& o) {
   }
   validate::ValidationOptions options;
   const color::Colorimeter d65 = LoadColorimeter("D65", 2);
-  options.build = fit::SharedFitBuilder(d65);
+  options.build = fit::SharedFitBuilder(d65, &threads);
+  options.threads = &threads;
   options.methods = ParseMethods(o.methods);
   options.angles_deg = ParseNumberList(o.angles, "--angles");
   for (double a : options.angles_deg) {

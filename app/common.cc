@@ -216,6 +216,8 @@ std::unique_ptr<AlloyModel> ModelSource::Load(bool quiet) const {
     // No progress lines: a command that then fails on another option prints its one error
     // line only (fit, whose work this is, reports its progress itself).
     fit::FitSettings settings;
+    ThreadBudget threads;  // every core
+    settings.threads = &threads;
     const color::Colorimeter colorimeter = LoadColorimeter("D65", 2);
     settings.colorimeter = &colorimeter;
     auto model = fit::BuildModel(method, dataset, settings);

@@ -46,7 +46,7 @@ std::vector<Fold> FitFolds(const MethodInfo& method, const Dataset& dataset,
       if (s.x_atomic == f.x) f.held.push_back(&s);
     }
     f.compositions = DistinctCompositions(training);
-  });
+  }, settings.threads);
   return folds;
 }
 

@@ -47,9 +47,10 @@ std::unique_ptr<AlloyModel> BuildModel(const std::string& method, const Dataset&
 }
 
 std::function<std::unique_ptr<AlloyModel>(const std::string& method, const Dataset& training)>
-SharedFitBuilder(const color::Colorimeter& colorimeter) {
+SharedFitBuilder(const color::Colorimeter& colorimeter, ThreadBudget* threads) {
   FitSettings settings;
   settings.colorimeter = &colorimeter;
+  settings.threads = threads;
   settings.memo = MakeFitMemo();
   return [settings](const std::string& method, const Dataset& training) {
     return BuildModel(method, training, settings);

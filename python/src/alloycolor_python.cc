@@ -586,6 +586,8 @@ PYBIND11_MODULE(_alloycolor, m) {
                    const py::object& progress) {
     if (method != fit::kAutoMethod) RequireMethod(method);
     fit::FitSettings settings;
+    ThreadBudget threads;  // every core, as the program's default
+    settings.threads = &threads;
     settings.degree = degree;
     settings.smoothing = smoothing;
     settings.space = space;
@@ -700,7 +702,9 @@ PYBIND11_MODULE(_alloycolor, m) {
           validate::ValidationOptions options;
           // As `alloycolor validate`: fits score colour under D65, 2 degrees.
           const color::Colorimeter& d65 = GetColorimeter("D65", 2);
-          options.build = fit::SharedFitBuilder(d65);
+          ThreadBudget threads;  // every core, as the program's default
+          options.build = fit::SharedFitBuilder(d65, &threads);
+          options.threads = &threads;
           options.methods = methods;
           options.angles_deg = angles_deg;
           options.mode = mode;

@@ -424,7 +424,7 @@ ValidationReport ComputeValidation(const Dataset& dataset,
                       : std::string()) +
                  (errors[s].empty() ? "" : ": failed: " + errors[s]));
       }
-    });
+    }, options.threads);
     // A method that fails everywhere beside others that work is reported as failed in
     // each split (the physical fit refusing unphysical data, say); when no method builds
     // on any split, the first method's first error is the answer.

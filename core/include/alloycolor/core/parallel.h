@@ -55,18 +55,30 @@ void ParallelFor(int count, int block, int threads, const Body& body) {
   if (error) std::rethrow_exception(error);
 }
 
-// Calls task(i) for every i in [0, count), on the calling thread and the machine's other
-// cores not already running such tasks: at most hardware_concurrency() threads in all
-// across nested calls (a call made inside a task gets the threads still free, often none,
-// and then runs its tasks in turn on its own thread). Every task runs; then the exception
-// of the lowest i, if any, is rethrown, so the outcome does not depend on the timing. The
-// tasks must not share mutable state (each writes its own result).
-void ParallelTasks(std::size_t count, const std::function<void(std::size_t)>& task);
+// The threads one piece of work may use in all (the caller's included; 0: every core of
+// the machine), shared by the ParallelTasks calls it makes, nested ones too. The face that
+// starts the work owns it and hands it in (FitSettings::threads, ValidationOptions).
+class ThreadBudget {
+ public:
+  explicit ThreadBudget(int threads = 0) : free_(ThreadCount(threads) - 1) {}
+  ThreadBudget(const ThreadBudget&) = delete;
+  ThreadBudget& operator=(const ThreadBudget&) = delete;
+  // Up to `want` threads beyond the caller's, as many as are free; Return gives them back.
+  int Claim(int want);
+  void Return(int threads) { free_ += threads; }
 
-// How many threads ParallelTasks may use in all (the caller's included): 0 for every core
-// of the machine (the default), 1 for the caller's thread alone. Call it while no tasks
-// run (a program sets it from its options before the work).
-void SetParallelTaskThreads(int threads);
+ private:
+  std::atomic<int> free_;
+};
+
+// Calls task(i) for every i in [0, count), on the calling thread and the budget's threads
+// not already running such tasks (a call made inside a task gets the threads still free,
+// often none, and then runs its tasks in turn on its own thread; no budget: all in turn on
+// the caller's). Every task runs; then the exception of the lowest i, if any, is rethrown,
+// so the outcome does not depend on the timing. The tasks must not share mutable state
+// (each writes its own result).
+void ParallelTasks(std::size_t count, const std::function<void(std::size_t)>& task,
+                   ThreadBudget* budget);
 
 }  // namespace alloycolor
 

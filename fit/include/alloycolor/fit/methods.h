@@ -21,6 +21,7 @@
 
 #include "alloycolor/color/colorimetry.h"
 #include "alloycolor/core/dataset.h"
+#include "alloycolor/core/parallel.h"
 #include "alloycolor/core/progress.h"
 #include "alloycolor/model/alloy_model.h"
 
@@ -35,6 +36,7 @@ struct FitMemo;
 std::shared_ptr<FitMemo> MakeFitMemo();
 
 struct FitSettings {
+  ThreadBudget* threads = nullptr;  // the threads its folds may share; none: one at a time
   int degree = -1;      // physical: composition degree; < 0: the method's default
   double smoothing = -1;  // smooth: roughness penalty across composition; -1: cross-validated
   // smooth: the space of its curves, "eps" or "log_eps"; empty: chosen by its leave-one-out
@@ -108,10 +110,11 @@ std::unique_ptr<AlloyModel> BuildModel(const std::string& method, const Dataset&
                                        const FitSettings& settings = {});
 
 // BuildModel for many fits of one job (the splits and methods of a validation report, as
-// validate::ModelBuilder): colours scored with `colorimeter`, which must outlive it, and
-// one FitMemo shared by every fit it makes.
+// validate::ModelBuilder): colours scored with `colorimeter`, which must outlive it, one
+// FitMemo shared by every fit it makes, and the folds' threads from `threads` (if given,
+// it must outlive the builder).
 std::function<std::unique_ptr<AlloyModel>(const std::string& method, const Dataset& training)>
-SharedFitBuilder(const color::Colorimeter& colorimeter);
+SharedFitBuilder(const color::Colorimeter& colorimeter, ThreadBudget* threads = nullptr);
 
 }  // namespace alloycolor::fit
 

@@ -38,6 +38,7 @@
 
 #include "alloycolor/color/colorimetry.h"
 #include "alloycolor/core/dataset.h"
+#include "alloycolor/core/parallel.h"
 #include "alloycolor/core/progress.h"
 #include "alloycolor/model/alloy_model.h"
 
@@ -53,6 +54,7 @@ struct ValidationOptions {
   std::vector<double> angles_deg;    // incidence angles for delta_e00
   std::string mode;                  // "loo" or "holdout", recorded in the report
   int sigma_draws = 64;              // draws for delta_e00_sigma
+  ThreadBudget* threads = nullptr;   // the threads its splits may share; none: in turn
 };
 
 // What one method predicts for one held-out sample.

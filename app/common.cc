@@ -82,18 +82,23 @@ std::vector<std::string> SplitComma(const std::string& text) {
 
 }  // namespace
 
-std::vector<double> ParseCompositions(const std::string& text, const AlloySystem& system) {
+std::vector<double> ParseCompositions(const std::string& text, const AlloySystem& system,
+                                      const std::string& option) {
   std::vector<double> xs;
   const std::vector<std::string> parts = SplitComma(text);
   if (parts.size() > kMaxListValues) {
-    throw Error("compositions: " + std::to_string(parts.size()) + " given, at most " +
+    throw Error(option + ": " + std::to_string(parts.size()) + " compositions given, at most " +
                 std::to_string(kMaxListValues) + " (use 'alloycolor sweep' for more)");
   }
   for (const std::string& part : parts) {
-    if (part.find('\0') != std::string::npos) throw Error("compositions: a NUL byte in the list");
-    xs.push_back(ParseComposition(part, system));
+    if (part.find('\0') != std::string::npos) throw Error(option + ": a NUL byte in the list");
+    try {
+      xs.push_back(ParseComposition(part, system));
+    } catch (const Error& e) {
+      throw Error(option + ": " + e.what());
+    }
   }
-  if (xs.empty()) throw Error("no composition given");
+  if (xs.empty()) throw Error(option + ": no composition given");
   return xs;
 }
 
@@ -263,7 +268,7 @@ std::unique_ptr<AlloyModel> MaterialSource::LoadModel(bool quiet) const {
 }
 
 std::vector<double> MaterialSource::Compositions(const AlloyModel& model, bool single) const {
-  const std::vector<double> xs = ParseCompositions(x_text, model.system());
+  const std::vector<double> xs = ParseCompositions(x_text, model.system(), "--x");
   if (single && xs.size() != 1) throw Error("--x: give one composition, not " + x_text);
   for (double x : xs) CheckComposition(model, x, source.extrapolate);
   return xs;

@@ -31,8 +31,10 @@ Dataset LoadDatasetArg(const std::string& arg);
 // Colorimeter for --illuminant and --observer; the colour tables are noted as inputs.
 color::Colorimeter LoadColorimeter(const std::string& illuminant, int observer_deg);
 
-// Comma-separated compositions ("0.5,75wt%,18k") as atomic fractions of element a.
-std::vector<double> ParseCompositions(const std::string& text, const AlloySystem& system);
+// Comma-separated compositions ("0.5,75wt%,18k") as atomic fractions of element a; errors
+// name `option`.
+std::vector<double> ParseCompositions(const std::string& text, const AlloySystem& system,
+                                      const std::string& option);
 // The samples of `dataset` at the comma-separated compositions of `text`, each once, in
 // the order given: a plain number matches a sample's atomic fraction or, failing that, the
 // number the manifest gives it (a weight fraction in a weight-fraction manifest); 75at%,

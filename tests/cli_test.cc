@@ -277,6 +277,25 @@ TEST_F(BadInput, ModelFilesAndRefit) {
   EXPECT_EQ(r.out.substr(0, 14), "lambda_nm,n,k\n");
 }
 
+// A program that guides: what was wrong and what would be right, on one line, status 2.
+std::vector<std::string> Args(std::vector<std::string> head, const std::vector<std::string>& tail) {
+  head.insert(head.end(), tail.begin(), tail.end());
+  return head;
+}
+
+TEST_F(BadInput, AMalformedCompositionSaysWhatIsAccepted) {
+  const std::vector<std::string> color = {"color", "--data", "Au-Ag", "--method", "paper"};
+  ExpectCleanError(Args(color, {"--x", "75wt"}),
+                   {"--x: composition '75wt': did you mean 75wt%?", "0.75, 75at%, 75wt%", "18k"});
+  ExpectCleanError(Args(color, {"--x", "0.5,75%wt"}), {"'75%wt'", "did you mean 75wt%?"});
+  ExpectCleanError(Args(color, {"--x", "18ct"}), {"did you mean 18k?"});
+  ExpectCleanError(Args(color, {"--x", "75"}), {"'75'", "did you mean 75at% or 75wt%?"});
+  ExpectCleanError(Args(color, {"--x", "abc"}), {"--x: composition 'abc'", "accepted: "});
+  EXPECT_EQ(RunProgram(Args(color, {"--x", "abc"})).err.find("did you mean"), std::string::npos);
+  ExpectCleanError({"predict", "--data", "Au-Ag", "--method", "paper", "--x", "50at"},
+                   {"--x: composition '50at': did you mean 50at%?"});
+}
+
 TEST(Cli, PredictWritesTheModelsIndex) {
   const std::string dir = MakeTempDir();
   ASSERT_EQ(RunProgram({"fit", "--data", "Au-Ag", "--method", "paper", "--out",

@@ -24,9 +24,18 @@ namespace alloycolor::app {
 // next to the program, else the source tree's data/.
 std::string DataRoot();
 
+// The bundled data sets' names ("Au-Ag", ...): DataRoot()'s folders holding dataset.json.
+std::vector<std::string> BundledDatasets();
+
 // A data set given on the command line: a path, or the name of a bundled set ("Au-Ag");
-// its files are noted as inputs (output_guard.h).
-Dataset LoadDatasetArg(const std::string& arg);
+// its files are noted as inputs (output_guard.h). An unknown name lists the bundled sets
+// and the nearest; a model file or an n,k file is named as such (`takes_nk`: the command
+// also takes --nk, which the message then offers).
+Dataset LoadDatasetArg(const std::string& arg, bool takes_nk = false);
+
+// A model file given on the command line, noted as an input; a data set or an n,k file
+// given instead is named as such (and --nk offered where the command takes it).
+std::unique_ptr<AlloyModel> LoadModelArg(const std::string& path, bool takes_nk = false);
 
 // Colorimeter for --illuminant and --observer; the colour tables are noted as inputs.
 color::Colorimeter LoadColorimeter(const std::string& illuminant, int observer_deg);
@@ -68,6 +77,7 @@ struct ModelSource {
   std::string data_dir;
   std::string method = "auto";
   bool extrapolate = false;
+  bool takes_nk = false;  // the command takes --nk too (MaterialSource), for messages
   void AddOptions(CLI::App* cmd, bool with_data);
   // Loads or builds the model; throws Error when neither or both are given.
   std::unique_ptr<AlloyModel> Load(bool quiet) const;

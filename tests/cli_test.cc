@@ -283,6 +283,18 @@ std::vector<std::string> Args(std::vector<std::string> head, const std::vector<s
   return head;
 }
 
+TEST_F(BadInput, AnUnknownDataSetNameListsTheBundledOnes) {
+  ExpectCleanError({"color", "--data", "AuAg", "--x", "0.5"},
+                   {"no data set 'AuAg': not a folder, a manifest or a bundled set (Au-Ag, Cu-Zn, "
+                    "Nb-Sn); did you mean Au-Ag?"});
+  ExpectCleanError({"fit", "--data", "nb-sn", "--out", dir_ + "/m.json"},
+                   {"'nb-sn'", "did you mean Nb-Sn?"});
+  // Far from every name: the list without a guess.
+  ExpectCleanError({"color", "--data", "Pt-Ir", "--x", "0.5"}, {"(Au-Ag, Cu-Zn, Nb-Sn)"});
+  EXPECT_EQ(RunProgram({"color", "--data", "Pt-Ir", "--x", "0.5"}).err.find("did you mean"),
+            std::string::npos);
+}
+
 TEST_F(BadInput, AMalformedCompositionSaysWhatIsAccepted) {
   const std::vector<std::string> color = {"color", "--data", "Au-Ag", "--method", "paper"};
   ExpectCleanError(Args(color, {"--x", "75wt"}),
@@ -294,6 +306,34 @@ TEST_F(BadInput, AMalformedCompositionSaysWhatIsAccepted) {
   EXPECT_EQ(RunProgram(Args(color, {"--x", "abc"})).err.find("did you mean"), std::string::npos);
   ExpectCleanError({"predict", "--data", "Au-Ag", "--method", "paper", "--x", "50at"},
                    {"--x: composition '50at': did you mean 50at%?"});
+}
+
+TEST_F(BadInput, ADataSetGivenAsAModelAndTheReverseAreNamed) {
+  const std::string model = dir_ + "/model.json";
+  ASSERT_EQ(RunProgram({"fit", "--data", "Au-Ag", "--method", "paper", "--out", model, "--quiet"})
+                .status,
+            0);
+  const std::string manifest = DataDir() + "/Au-Ag/dataset.json";
+  const std::string yml = DataDir() + "/Au-Ag/Rioux-Au50Ag50.yml";
+  ExpectCleanError({"color", "--model", manifest, "--x", "0.5"},
+                   {manifest + ": this is a data set manifest: use --data"});
+  ExpectCleanError({"predict", "--model", DataDir() + "/Au-Ag", "--x", "0.5"},
+                   {"this is a data set: use --data"});
+  ExpectCleanError({"color", "--data", model, "--x", "0.5"},
+                   {model + ": this is a model file: use --model"});
+  ExpectCleanError({"sweep", "--data", model}, {"this is a model file: use --model"});
+  // One sample's n, k: what a data set is, and --nk where the command takes it.
+  ExpectCleanError({"fit", "--data", yml, "--out", dir_ + "/m.json"},
+                   {yml + ": this is one sample's n,k, not a data set", "dataset.json",
+                    "several compositions"});
+  EXPECT_EQ(RunProgram({"fit", "--data", yml, "--out", dir_ + "/m.json"}).err.find("--nk"),
+            std::string::npos);
+  ExpectCleanError({"color", "--data", File("gold.csv", "lambda_nm,n,k\n400,1,2\n500,1,2\n"),
+                    "--x", "0.5"},
+                   {"gold.csv: this is one sample's n,k", "use --nk"});
+  ExpectCleanError({"render", "--model", yml, "--x", "0.5", "--out", dir_ + "/r.png"},
+                   {"one sample's n,k, not a model file", "use --nk"});
+  EXPECT_FALSE(std::filesystem::exists(dir_ + "/m.json"));
 }
 
 TEST(Cli, PredictWritesTheModelsIndex) {

@@ -336,6 +336,22 @@ TEST_F(BadInput, ADataSetGivenAsAModelAndTheReverseAreNamed) {
   EXPECT_FALSE(std::filesystem::exists(dir_ + "/m.json"));
 }
 
+TEST_F(BadInput, AnUnknownOptionOrCommandSuggestsTheNearest) {
+  const std::vector<std::string> color = {"color", "--data", "Au-Ag", "--method", "paper",
+                                          "--x", "0.5"};
+  ExpectCleanError(Args(color, {"--angel", "45"}),
+                   {"color: unknown option '--angel'; did you mean --angle?"});
+  ExpectCleanError(Args(color, {"--illuminnt=D50"}), {"'--illuminnt'; did you mean --illuminant?"});
+  // Named before the required option it hides.
+  ExpectCleanError({"render", "--nk", DataDir() + "/pure/Au-Johnson.yml", "--outt",
+                    dir_ + "/r.png"},
+                   {"render: unknown option '--outt'; did you mean --out?"});
+  ExpectCleanError({"colour", "--data", "Au-Ag"},
+                   {"unknown command 'colour'; did you mean color?", "fit, predict"});
+  ExpectCleanError(Args(color, {"--zzzzzz"}), {"unknown option '--zzzzzz'"});
+  EXPECT_EQ(RunProgram(Args(color, {"--zzzzzz"})).err.find("did you mean"), std::string::npos);
+}
+
 TEST(Cli, PredictWritesTheModelsIndex) {
   const std::string dir = MakeTempDir();
   ASSERT_EQ(RunProgram({"fit", "--data", "Au-Ag", "--method", "paper", "--out",

@@ -337,6 +337,12 @@ std::vector<double> MaterialSource::Compositions(const AlloyModel& model, bool s
   return xs;
 }
 
+std::vector<std::string> MaterialSource::CompositionTexts() const {
+  std::vector<std::string> texts;
+  for (const std::string& part : SplitComma(x_text)) texts.emplace_back(Trim(part));
+  return texts;
+}
+
 void AddColorimetryOptions(CLI::App* cmd, std::string* illuminant, int* observer) {
   cmd->add_option("--illuminant", *illuminant, "CIE illuminant: A, C, D50, D65, E, F2, F11")
       ->capture_default_str();

@@ -101,6 +101,8 @@ struct MaterialSource {
   std::unique_ptr<AlloyModel> LoadModel(bool quiet) const;
   // The --x compositions, each checked against the model's range; `single`: exactly one.
   std::vector<double> Compositions(const AlloyModel& model, bool single) const;
+  // The --x compositions as the user wrote them ("18k"), trimmed, in the same order.
+  std::vector<std::string> CompositionTexts() const;
 };
 
 // --illuminant and --observer, the same on every command that computes colour.

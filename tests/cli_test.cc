@@ -352,6 +352,23 @@ TEST_F(BadInput, AnUnknownOptionOrCommandSuggestsTheNearest) {
   EXPECT_EQ(RunProgram(Args(color, {"--zzzzzz"})).err.find("did you mean"), std::string::npos);
 }
 
+TEST(Cli, CompositionsAreEchoedAsWritten) {
+  const RunResult r = RunProgram(
+      {"color", "--data", "Au-Ag", "--method", "paper", "--x", "18k, 0.5,75at%", "--quiet"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("\n18k (x = 0.6216) "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\n0.5 "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\n75at% (x = 0.75) "), std::string::npos) << r.out;
+  const nlohmann::json one = ColorJson({"--data", "Au-Ag", "--method", "paper", "--x", "18k"});
+  EXPECT_EQ(one["x_given"], "18k");
+  EXPECT_NEAR(one["x"].get<double>(), 0.6216, 1e-4);
+  const nlohmann::json two =
+      ColorJson({"--data", "Au-Ag", "--method", "paper", "--x", "75wt%,0.25"});
+  EXPECT_EQ(two["results"][0]["x_given"], "75wt%");
+  EXPECT_EQ(two["results"][1]["x_given"], "0.25");
+  EXPECT_EQ(two["results"][1]["x"].get<double>(), 0.25);
+}
+
 TEST(Cli, PredictWritesTheModelsIndex) {
   const std::string dir = MakeTempDir();
   ASSERT_EQ(RunProgram({"fit", "--data", "Au-Ag", "--method", "paper", "--out",

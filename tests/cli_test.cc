@@ -369,6 +369,24 @@ TEST(Cli, CompositionsAreEchoedAsWritten) {
   EXPECT_EQ(two["results"][1]["x"].get<double>(), 0.25);
 }
 
+TEST_F(BadInput, OutputNamesTheCommandDoesNotWriteAreRefused) {
+  const std::string gold = DataDir() + "/pure/Au-Johnson.yml";
+  ExpectCleanError({"render", "--nk", gold, "--size", "8", "--out", dir_ + "/x.jpg"},
+                   {"x.jpg", "render writes PNG only"});
+  EXPECT_FALSE(std::filesystem::exists(dir_ + "/x.jpg"));
+  ASSERT_EQ(RunProgram({"render", "--nk", gold, "--size", "8", "--out", dir_ + "/x.PNG",
+                        "--quiet"})
+                .status,
+            0);
+  std::filesystem::remove(dir_ + "/x.PNG");
+  // export's --out is a prefix: a folder would get hidden files (.eta.spd, .pbrt) inside.
+  ExpectCleanError({"export", "--nk", gold, "--out", dir_ + "/"},
+                   {"--out is a file name prefix, e.g. " + dir_ + "/au18k"});
+  ExpectCleanError({"export", "--nk", gold, "--out", dir_}, {"names a folder"});
+  ExpectCleanError({"export", "--nk", gold, "--out", dir_ + "/new/"}, {"names a folder"});
+  EXPECT_TRUE(std::filesystem::is_empty(dir_));
+}
+
 TEST(Cli, PredictWritesTheModelsIndex) {
   const std::string dir = MakeTempDir();
   ASSERT_EQ(RunProgram({"fit", "--data", "Au-Ag", "--method", "paper", "--out",

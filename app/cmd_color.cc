@@ -120,8 +120,7 @@ void Run(const ColorOptions& o) {
   nlohmann::json results = nlohmann::json::array();
   std::string text;
   if (!o.json) {
-    PrintHeader(&text, model->system().Name() + ", " + model->method() + " model", o,
-                label_width);
+    PrintHeader(&text, model->system().Name() + ", " + model->method() + " model", o, label_width);
   }
   for (std::size_t i = 0; i < xs.size(); ++i) {
     const double x = xs[i];

@@ -45,7 +45,8 @@ void Run(const ExportOptions& o) {
   if (o.out.back() == '/' || std::filesystem::is_directory(o.out)) {
     std::string folder = o.out;
     while (folder.size() > 1 && folder.back() == '/') folder.pop_back();
-    throw Error("--out " + Quote(o.out, 100) + " names a folder: --out is a file name prefix, e.g. " +
+    throw Error("--out " + Quote(o.out, 100) +
+                " names a folder: --out is a file name prefix, e.g. " +
                 (folder == "/" ? "" : folder) + "/au18k");
   }
   exports::CheckExportRoughness(o.settings.roughness, "--roughness");

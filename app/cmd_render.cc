@@ -122,7 +122,8 @@ render::CheckedTable TableOrRefusal(const render::DirectReflection& direct,
 void CheckPngName(const std::string& out) {
   const std::string extension = Lower(std::filesystem::path(out).extension().string());
   if (!extension.empty() && extension != ".png") {
-    throw Error("--out " + Quote(out, 100) + ": render writes PNG only; give a name ending in .png");
+    throw Error("--out " + Quote(out, 100) +
+                ": render writes PNG only; give a name ending in .png");
   }
 }
 

@@ -60,8 +60,7 @@ std::string GuidingLine(const CLI::App& app, int argc, char** argv) {
     std::string list;
     for (const std::string& name : commands) list += (list.empty() ? "" : ", ") + name;
     return "unknown command " + alloycolor::Quote(argv[1]) +
-           (nearest.empty() ? "" : "; did you mean " + nearest + "?") + " (commands: " + list +
-           ")";
+           (nearest.empty() ? "" : "; did you mean " + nearest + "?") + " (commands: " + list + ")";
   }
   const CLI::App* cmd = parsed.front();
   std::vector<std::string> names;  // long option names without their dashes

@@ -310,9 +310,9 @@ TEST_F(BadInput, AMalformedCompositionSaysWhatIsAccepted) {
 
 TEST_F(BadInput, ADataSetGivenAsAModelAndTheReverseAreNamed) {
   const std::string model = dir_ + "/model.json";
-  ASSERT_EQ(RunProgram({"fit", "--data", "Au-Ag", "--method", "paper", "--out", model, "--quiet"})
-                .status,
-            0);
+  ASSERT_EQ(
+      RunProgram({"fit", "--data", "Au-Ag", "--method", "paper", "--out", model, "--quiet"}).status,
+      0);
   const std::string manifest = DataDir() + "/Au-Ag/dataset.json";
   const std::string yml = DataDir() + "/Au-Ag/Rioux-Au50Ag50.yml";
   ExpectCleanError({"color", "--model", manifest, "--x", "0.5"},
@@ -323,29 +323,29 @@ TEST_F(BadInput, ADataSetGivenAsAModelAndTheReverseAreNamed) {
                    {model + ": this is a model file: use --model"});
   ExpectCleanError({"sweep", "--data", model}, {"this is a model file: use --model"});
   // One sample's n, k: what a data set is, and --nk where the command takes it.
-  ExpectCleanError({"fit", "--data", yml, "--out", dir_ + "/m.json"},
-                   {yml + ": this is one sample's n,k, not a data set", "dataset.json",
-                    "several compositions"});
+  ExpectCleanError(
+      {"fit", "--data", yml, "--out", dir_ + "/m.json"},
+      {yml + ": this is one sample's n,k, not a data set", "dataset.json", "several compositions"});
   EXPECT_EQ(RunProgram({"fit", "--data", yml, "--out", dir_ + "/m.json"}).err.find("--nk"),
             std::string::npos);
-  ExpectCleanError({"color", "--data", File("gold.csv", "lambda_nm,n,k\n400,1,2\n500,1,2\n"),
-                    "--x", "0.5"},
-                   {"gold.csv: this is one sample's n,k", "use --nk"});
+  ExpectCleanError(
+      {"color", "--data", File("gold.csv", "lambda_nm,n,k\n400,1,2\n500,1,2\n"), "--x", "0.5"},
+      {"gold.csv: this is one sample's n,k", "use --nk"});
   ExpectCleanError({"render", "--model", yml, "--x", "0.5", "--out", dir_ + "/r.png"},
                    {"one sample's n,k, not a model file", "use --nk"});
   EXPECT_FALSE(std::filesystem::exists(dir_ + "/m.json"));
 }
 
 TEST_F(BadInput, AnUnknownOptionOrCommandSuggestsTheNearest) {
-  const std::vector<std::string> color = {"color", "--data", "Au-Ag", "--method", "paper",
-                                          "--x", "0.5"};
+  const std::vector<std::string> color = {"color", "--data", "Au-Ag", "--method",
+                                          "paper", "--x",    "0.5"};
   ExpectCleanError(Args(color, {"--angel", "45"}),
                    {"color: unknown option '--angel'; did you mean --angle?"});
   ExpectCleanError(Args(color, {"--illuminnt=D50"}), {"'--illuminnt'; did you mean --illuminant?"});
   // Named before the required option it hides.
-  ExpectCleanError({"render", "--nk", DataDir() + "/pure/Au-Johnson.yml", "--outt",
-                    dir_ + "/r.png"},
-                   {"render: unknown option '--outt'; did you mean --out?"});
+  ExpectCleanError(
+      {"render", "--nk", DataDir() + "/pure/Au-Johnson.yml", "--outt", dir_ + "/r.png"},
+      {"render: unknown option '--outt'; did you mean --out?"});
   ExpectCleanError({"colour", "--data", "Au-Ag"},
                    {"unknown command 'colour'; did you mean color?", "fit, predict"});
   ExpectCleanError(Args(color, {"--zzzzzz"}), {"unknown option '--zzzzzz'"});
@@ -374,8 +374,7 @@ TEST_F(BadInput, OutputNamesTheCommandDoesNotWriteAreRefused) {
   ExpectCleanError({"render", "--nk", gold, "--size", "8", "--out", dir_ + "/x.jpg"},
                    {"x.jpg", "render writes PNG only"});
   EXPECT_FALSE(std::filesystem::exists(dir_ + "/x.jpg"));
-  ASSERT_EQ(RunProgram({"render", "--nk", gold, "--size", "8", "--out", dir_ + "/x.PNG",
-                        "--quiet"})
+  ASSERT_EQ(RunProgram({"render", "--nk", gold, "--size", "8", "--out", dir_ + "/x.PNG", "--quiet"})
                 .status,
             0);
   std::filesystem::remove(dir_ + "/x.PNG");

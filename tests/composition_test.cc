@@ -122,10 +122,10 @@ TEST(CompositionTest, BadTextIsNamed) {
 TEST(CompositionTest, CloseMissesGetTheAcceptedSpelling) {
   const AlloySystem au_ag = System("Au", "Ag");
   const std::pair<const char*, const char*> cases[] = {
-      {"75wt", "did you mean 75wt%?"},   {"75 wt", "did you mean 75wt%?"},
-      {"75%wt", "did you mean 75wt%?"},  {"75wt.%", "did you mean 75wt%?"},
-      {"50at", "did you mean 50at%?"},   {"50mol%", "did you mean 50at%?"},
-      {"18ct", "did you mean 18k?"},     {"18 karat", "did you mean 18k?"},
+      {"75wt", "did you mean 75wt%?"},       {"75 wt", "did you mean 75wt%?"},
+      {"75%wt", "did you mean 75wt%?"},      {"75wt.%", "did you mean 75wt%?"},
+      {"50at", "did you mean 50at%?"},       {"50mol%", "did you mean 50at%?"},
+      {"18ct", "did you mean 18k?"},         {"18 karat", "did you mean 18k?"},
       {"75", "did you mean 75at% or 75wt%?"}};
   for (const auto& [text, needle] : cases) {
     EXPECT_THAT(ErrorOf(text, au_ag), HasSubstr(needle)) << text;

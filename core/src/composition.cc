@@ -128,10 +128,9 @@ std::string CloseForm(std::string_view lower) {
     const char* accepted;
   };
   constexpr Spelling kSpellings[] = {
-      {"wt", "wt%"},  {"%wt", "wt%"},    {"w%", "wt%"},    {"wt%", "wt%"},
-      {"at", "at%"},  {"%at", "at%"},    {"a%", "at%"},    {"at%", "at%"},
-      {"mol%", "at%"}, {"ct", "k"},      {"karat", "k"},   {"carat", "k"},
-      {"kt", "k"},    {"k", "k"}};
+      {"wt", "wt%"},  {"%wt", "wt%"}, {"w%", "wt%"},  {"wt%", "wt%"},  {"at", "at%"},
+      {"%at", "at%"}, {"a%", "at%"},  {"at%", "at%"}, {"mol%", "at%"}, {"ct", "k"},
+      {"karat", "k"}, {"carat", "k"}, {"kt", "k"},    {"k", "k"}};
   for (const Spelling& s : kSpellings) {
     if (suffix == s.written) return std::string(lower.substr(0, end)) + s.accepted;
   }
@@ -220,8 +219,8 @@ double ParseComposition(const std::string& text, const AlloySystem& system) {
   number(0);
   if (value > 1 && value <= 100) {
     const std::string number(view);
-    Fail(quoted + " lies outside [0, 1] (an atomic fraction); did you mean " + number +
-         "at% or " + number + "wt%?");
+    Fail(quoted + " lies outside [0, 1] (an atomic fraction); did you mean " + number + "at% or " +
+         number + "wt%?");
   }
   if (!(value >= 0 && value <= 1)) {
     Fail(quoted + " lies outside [0, 1] (an atomic fraction; write at% or wt% for percent)");

@@ -79,11 +79,12 @@ std::string ChartSvg(const CompositionChart& chart) {
   const std::string right = end_label(chart.swatches.back().x_atomic);
   if (!left.empty()) {
     svg << "<text x=\"" << x0 - 6 << "\" y=\"" << y0 + l.swatch / 2 + 5
-        << "\" text-anchor=\"end\" font-size=\"14\" font-weight=\"bold\">" << left << "</text>\n";
+        << "\" text-anchor=\"end\" font-size=\"14\" font-weight=\"bold\">" << EscapeXml(left)
+        << "</text>\n";
   }
   if (!right.empty()) {
     svg << "<text x=\"" << x0 + strip + 6 << "\" y=\"" << y0 + l.swatch / 2 + 5
-        << "\" font-size=\"14\" font-weight=\"bold\">" << right << "</text>\n";
+        << "\" font-size=\"14\" font-weight=\"bold\">" << EscapeXml(right) << "</text>\n";
   }
   svg << "<text x=\"" << width / 2 << "\" y=\"" << height - 10
       << "\" text-anchor=\"middle\" font-size=\"12\" fill=\"#333\">" << unit << " "

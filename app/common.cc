@@ -278,8 +278,9 @@ std::unique_ptr<AlloyModel> ModelSource::Load(bool quiet) const {
     if (!quiet) {
       for (const std::string& w : dataset.warnings) Warn(w);
     }
+    // No progress lines: a command that then fails on another option prints its one error
+    // line only (fit, whose work this is, reports its progress itself).
     fit::FitSettings settings;
-    settings.progress = ProgressPrinter(quiet);
     const color::Colorimeter colorimeter = LoadColorimeter("D65", 2);
     settings.colorimeter = &colorimeter;
     auto model = fit::BuildModel(method, dataset, settings);

@@ -4,11 +4,14 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <string_view>
 
-#include "alloycolor/core/markup.h"
 #include "alloycolor/color/colorimetry.h"
 #include "alloycolor/core/composition.h"
+#include "alloycolor/core/markup.h"
+#include "explore_assets.h"
 
 namespace alloycolor::app {
 namespace {
@@ -130,10 +133,20 @@ json SRGBMatrixJson() {
   return m;
 }
 
-std::string Replace(std::string text, const std::string& key, const std::string& value) {
-  const std::size_t at = text.find(key);
-  if (at != std::string::npos) text.replace(at, key.size(), value);
-  return text;
+// page with each @KEY@ replaced by values.at(KEY), in one pass, so that a value is never
+// read as a key.
+std::string FillTemplate(std::string_view page,
+                         const std::map<std::string_view, std::string_view>& values) {
+  std::string out;
+  std::size_t at = 0;
+  for (std::size_t open; (open = page.find('@', at)) != page.npos;) {
+    const std::size_t close = page.find('@', open + 1);
+    out += page.substr(at, open - at);
+    out += values.at(page.substr(open + 1, close - open - 1));
+    at = close + 1;
+  }
+  out += page.substr(at);
+  return out;
 }
 
 }  // namespace
@@ -176,28 +189,19 @@ std::string ExplorePageHtml(const ExplorePageInputs& in) {
                      {"samples_note", in.samples_note},
                      {"tiles", {{"sphere", TileJson(in.sphere)}, {"ring", TileJson(in.ring)}}},
                      {"environment", EnvironmentJson(in.environment_maps)}};
-  // Inside <script>, "</" must not appear: JSON allows "<\/" for "</".
-  std::string data_text = data.dump();
-  for (std::size_t at = 0; (at = data_text.find("</", at)) != std::string::npos; at += 3) {
-    data_text.replace(at, 2, "<\\/");
-  }
-  const std::string title = "alloycolor explorer: " + system.Name() + ", " + model.method();
-  std::string head = Replace(kExploreHtmlHead, "@TITLE@", EscapeXml(title));
-  const std::string body = Replace(kExploreBody, "@SYSTEM@", EscapeXml(system.Name()));
-  std::string html;
-  html += head;
-  html += "<style>\n";
-  html += kExploreCss;
-  html += "</style>\n</head>\n<body>\n";
-  html += body;
-  html += "<script type=\"application/json\" id=\"explorer-data\">";
-  html += data_text;
-  html += "</script>\n<script id=\"colour-js\">\n";
-  html += kExploreColourJs;
-  html += "</script>\n<script id=\"app-js\">\n";
-  html += kExploreAppJs;
-  html += "</script>\n</body>\n</html>\n";
-  return html;
+  // A name that is not valid UTF-8 is shown with U+FFFD rather than refused.
+  const std::string data_text =
+      EscapeJsonForScript(data.dump(-1, ' ', false, json::error_handler_t::replace));
+  const std::string title =
+      EscapeXml("alloycolor explorer: " + system.Name() + ", " + model.method());
+  const std::string system_name = EscapeXml(system.Name());
+  return FillTemplate(explore::kPageHtml, {{"TITLE", title},
+                                           {"SYSTEM", system_name},
+                                           {"STYLE", explore::kPageCss},
+                                           {"DATA", data_text},
+                                           {"COLOUR_JS", explore::kColourJs},
+                                           {"INPUT_JS", explore::kInputJs},
+                                           {"APP_JS", explore::kAppJs}});
 }
 
 }  // namespace alloycolor::app

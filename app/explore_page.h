@@ -7,7 +7,13 @@
 // renderer does: XYZ = E(r) * table(x, mu), mu = n.z, r the mirror direction (E = 1 in
 // uniform light), then linear sRGB with the program's matrix, the sRGB transfer curve and
 // 8 bits. Its CIELAB and CIEDE2000 are the formulas of colorimetry.h written in JavaScript
-// (tests/explore_test.cc checks them against the C++ ones).
+// (tests/explore_test.cc checks them against the C++ ones, tests/js against references).
+//
+// The page's HTML, CSS and scripts are the files in app/explore/ (colour.js: formulas and
+// interpolation; input.js: compositions and the address; app.js: the page), embedded at
+// build time (cmake/EmbedText.cmake); page.html names where the others and the data go
+// as @KEY@. Text from the user's files is data: escaped into the HTML (EscapeXml), into
+// the JSON block (EscapeJsonForScript), and put in the page as text nodes only.
 //
 // Binary tables travel as base64 in a JSON block: little-endian float32 for colour,
 // spectra and sigma, int16 normals (x, y; z = sqrt(1 - x^2 - y^2)) and uint8 coverage for
@@ -52,13 +58,6 @@ struct ExplorePageInputs {
 };
 
 std::string ExplorePageHtml(const ExplorePageInputs& inputs);
-
-// The page's template parts (explore_page_assets.cc).
-extern const char kExploreHtmlHead[];
-extern const char kExploreCss[];
-extern const char kExploreBody[];
-extern const char kExploreColourJs[];
-extern const char kExploreAppJs[];
 
 }  // namespace alloycolor::app
 

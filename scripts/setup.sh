@@ -7,7 +7,8 @@ cd "$(dirname "$0")/.."
 packages=(build-essential cmake ninja-build pkg-config libceres-dev libeigen3-dev
           nlohmann-json3-dev libyaml-cpp-dev libpng-dev libgtest-dev libgmock-dev
           libbenchmark-dev libcli11-dev libxml2-utils
-          pybind11-dev python3-pybind11 python3-dev python3-numpy python3-pytest)
+          pybind11-dev python3-pybind11 python3-dev python3-numpy python3-pytest
+          nodejs)  # nodejs: the explorer page's script tests (tests/js)
 packages+=("$@")
 missing=()
 for p in "${packages[@]}"; do

@@ -71,7 +71,7 @@ TEST(Cli, GrazingIncidenceGoesWhite) {
 
 TEST(Cli, PaperBaselineAtAKnownSampleIsThatSample) {
   const nlohmann::json direct = ColorJson({"--nk", DataDir() + "/Au-Ag/Rioux-Au50Ag50.yml"});
-  const nlohmann::json paper = ColorJson({"--data", DataDir() + "/Au-Ag", "--x", "0.5"});
+  const nlohmann::json paper = ColorJson({"--data", DataDir() + "/Au-Ag", "--method", "paper", "--x", "0.5"});
   for (int i = 0; i < 3; ++i) {
     EXPECT_NEAR(paper["XYZ"][i].get<double>(), direct["XYZ"][i].get<double>(), 1e-9);
   }

@@ -400,23 +400,9 @@ TEST_F(ExplorePages, SmoothPageShowsWhatColorAndRenderGiveWithUncertainty) {
   CheckAddress(*dir_ + "/smooth.html", source, "22k", "9k", "A", 0.0, true);
 }
 
-// Sharma, Wu & Dalal (2005), Table 1, pairs 1-13 (the hue-angle wrap cases).
-const double kSharma[][7] = {{50.0000, 2.6772, -79.7751, 50.0000, 0.0000, -82.7485, 2.0425},
-                             {50.0000, 3.1571, -77.2803, 50.0000, 0.0000, -82.7485, 2.8615},
-                             {50.0000, 2.8361, -74.0200, 50.0000, 0.0000, -82.7485, 3.4412},
-                             {50.0000, -1.3802, -84.2814, 50.0000, 0.0000, -82.7485, 1.0000},
-                             {50.0000, -1.1848, -84.8006, 50.0000, 0.0000, -82.7485, 1.0000},
-                             {50.0000, -0.9009, -85.5211, 50.0000, 0.0000, -82.7485, 1.0000},
-                             {50.0000, 0.0000, 0.0000, 50.0000, -1.0000, 2.0000, 2.3669},
-                             {50.0000, -1.0000, 2.0000, 50.0000, 0.0000, 0.0000, 2.3669},
-                             {50.0000, 2.4900, -0.0010, 50.0000, -2.4900, 0.0009, 7.1792},
-                             {50.0000, 2.4900, -0.0010, 50.0000, -2.4900, 0.0010, 7.1792},
-                             {50.0000, 2.4900, -0.0010, 50.0000, -2.4900, 0.0011, 7.2195},
-                             {50.0000, 2.4900, -0.0010, 50.0000, -2.4900, 0.0012, 7.2195},
-                             {50.0000, -0.0010, 2.4900, 50.0000, 0.0009, -2.4900, 4.8045}};
-
-// The page's own colour script, run by Chromium on the Sharma pairs and on random Lab
-// pairs and XYZ values, against the C++ functions.
+// The page's own colour script, run by Chromium on Sharma, Wu & Dalal's pairs
+// (tests/reference/ciede2000_sharma2005.csv) and on random Lab pairs and XYZ values,
+// against the C++ functions.
 TEST_F(ExplorePages, JavaScriptColourEqualsTheCppColour) {
   ASSERT_EQ(Paper().status, 0) << Paper().err;
   if (!HaveChromium()) GTEST_SKIP() << kChromium << " is absent (Debian package chromium)";
@@ -429,7 +415,10 @@ TEST_F(ExplorePages, JavaScriptColourEqualsTheCppColour) {
   std::mt19937 rng(2005);
   std::uniform_real_distribution<double> l(0.0, 100.0), ab(-90.0, 90.0), unit(0.0, 1.1);
   std::vector<std::array<double, 6>> pairs;
-  for (const auto& p : kSharma) pairs.push_back({p[0], p[1], p[2], p[3], p[4], p[5]});
+  const auto sharma = testing::ReadReferenceTable("ciede2000_sharma2005.csv");
+  for (const auto& r : sharma) {
+    pairs.push_back({r.at(1), r.at(2), r.at(3), r.at(4), r.at(5), r.at(6)});
+  }
   for (int i = 0; i < 300; ++i)
     pairs.push_back({l(rng), ab(rng), ab(rng), l(rng), ab(rng), ab(rng)});
   std::vector<std::array<double, 3>> xyzs;
@@ -468,7 +457,7 @@ TEST_F(ExplorePages, JavaScriptColourEqualsTheCppColour) {
     const auto& p = pairs[i];
     const double cpp = color::DeltaE00({p[0], p[1], p[2]}, {p[3], p[4], p[5]});
     EXPECT_NEAR(out["de"][i].get<double>(), cpp, 1e-9) << "pair " << i;
-    if (i < std::size(kSharma)) EXPECT_NEAR(out["de"][i].get<double>(), kSharma[i][6], 1e-4);
+    if (i < sharma.size()) EXPECT_NEAR(out["de"][i].get<double>(), sharma[i].at(7), 1e-4);
   }
   for (std::size_t i = 0; i < xyzs.size(); ++i) {
     const color::XYZ x{xyzs[i][0], xyzs[i][1], xyzs[i][2]};

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <system_error>
@@ -96,6 +97,25 @@ std::string ReadText(const std::string& path) {
 
 std::string DataDir() { return ALLOYCOLOR_DATA_DIR; }
 std::string TestsDir() { return ALLOYCOLOR_TESTS_DIR; }
+
+std::vector<std::vector<double>> ReadReferenceTable(const std::string& name) {
+  std::ifstream in(TestsDir() + "/reference/" + name);
+  EXPECT_TRUE(in) << "cannot read tests/reference/" << name;
+  std::vector<std::vector<double>> rows;
+  bool header = true;
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    if (header) {
+      header = false;
+      continue;
+    }
+    std::vector<double> row;
+    std::stringstream fields(line);
+    for (std::string field; std::getline(fields, field, ',');) row.push_back(std::stod(field));
+    rows.push_back(row);
+  }
+  return rows;
+}
 
 int CountLines(const std::string& text) {
   int lines = 0;

@@ -52,6 +52,10 @@ std::string ErrorOf(F f) {
 std::string DataDir();
 std::string TestsDir();
 
+// The rows of a CSV table in tests/reference/ as numbers: lines that start with '#' and
+// the header line are skipped.
+std::vector<std::vector<double>> ReadReferenceTable(const std::string& name);
+
 // Counts lines in text.
 int CountLines(const std::string& text);
 

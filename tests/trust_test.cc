@@ -47,7 +47,9 @@ void ExpectHonestAtOwnSamples(const AlloyModel& model, const Dataset& data) {
                        << " without a warning";
     ASSERT_TRUE(model.HasUncertainty()) << model.method();
     const double sigma = color::DeltaE00Sigma(D65(), model, s.x_atomic, 0.0);
-    EXPECT_GE(sigma, e.delta_e00) << model.method() << " at " << s.file;
+    // Every draw lands on the measurement there (the misfit term), so sigma is the miss
+    // up to rounding, and the data's precision only adds.
+    EXPECT_GE(sigma, e.delta_e00 * (1 - 1e-9)) << model.method() << " at " << s.file;
   }
 }
 
@@ -85,7 +87,7 @@ TEST(InSample, QuerryZincUnderPaperWarnsAndCoversTheMiss) {
   const std::unique_ptr<AlloyModel> model = fit::BuildModel("paper", data, settings);
   const double miss = color::ErrorAgainstSample(D65(), *model, data.samples.front()).delta_e00;
   EXPECT_GT(miss, 5.0);  // the paper model cannot invert the non-metallic zinc
-  EXPECT_GE(color::DeltaE00Sigma(D65(), *model, 0.0, 0.0), miss);
+  EXPECT_GE(color::DeltaE00Sigma(D65(), *model, 0.0, 0.0), miss * (1 - 1e-9));
   // Across the gap to the next sample the sigma falls off, and at that sample it is small.
   const double next = data.samples[1].x_atomic;
   EXPECT_LT(color::DeltaE00Sigma(D65(), *model, next, 0.0), 1.0);

@@ -441,15 +441,21 @@ void ExpectEpsPchipWithinTheFoldsScatter(const std::string& data, const std::str
   ASSERT_LE(mean, se);
   EXPECT_EQ(model["method"], "eps-pchip");
   const std::string reason = model["fit"]["selection"]["reason"];
-  EXPECT_NE(reason.find("one standard error"), std::string::npos) << reason;
+  EXPECT_NE(reason.find("tolerance"), std::string::npos) << reason;
   EXPECT_NE(reason.find(lowest), std::string::npos) << reason;
 }
 
-// The one-standard-error rule on Nb-Sn's leave-one-out: smooth has the lowest mean.
-TEST(AutoMethod, TakesTheSimplerMethodWithinTheFoldsScatter) {
-  size_t folds = 0;
-  ExpectEpsPchipWithinTheFoldsScatter("Nb-Sn", "smooth", &folds);
-  EXPECT_EQ(folds, 7u);
+// Nb-Sn's leave-one-out: smooth, auto's default, scores lowest and is taken.
+TEST(AutoMethod, KeepsTheDefaultWhereItScoresLowest) {
+  const std::string dir = MakeTempDir();
+  const RunResult fit = RunProgram({"fit", "--data", "Nb-Sn", "--quiet", "--out", dir + "/a.json"});
+  ASSERT_EQ(fit.status, 0) << fit.err;
+  std::ifstream in(dir + "/a.json");
+  const nlohmann::json model = nlohmann::json::parse(in);
+  EXPECT_EQ(model["method"], "smooth");
+  const std::string reason = model["fit"]["selection"]["reason"];
+  EXPECT_NE(reason.find("lowest"), std::string::npos) << reason;
+  EXPECT_EQ(model["fit"]["selection"]["scores"][0]["folds"], 7);
 }
 
 // A data set of the given bundled Nb-Sn samples (x: the manifest's numbers) in a new folder.
@@ -467,9 +473,10 @@ std::string NbSnSubset(const std::vector<std::pair<double, std::string>>& sample
   return dir;
 }
 
-// The same from two folds: Nb-Sn at 0, 6, 34 and 100 wt% Sn, where eps-spline's mean is
-// 40 % below eps-pchip's but the two folds' differences disagree. On the five samples
-// held back from this subset, eps-spline errs more.
+// From two folds: Nb-Sn at 0, 6, 34 and 100 wt% Sn, where eps-spline's mean is 40 % below
+// eps-pchip's but the two folds' differences disagree (and smooth, the regression, misses
+// an end sample by more than 0.01 in reflectance). On the five samples held back from this
+// subset, eps-spline errs more.
 TEST(AutoMethod, WeighsALeadByTheScatterOfTwoFolds) {
   const std::string dir = NbSnSubset({{0.0, "Golovashkin-Nb-293K.yml"},
                                       {0.06, "Golovashkin-06.yml"},

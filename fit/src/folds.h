@@ -94,6 +94,10 @@ void EstimatePredictionError(const MethodInfo& method, std::vector<Fold>& folds,
                              const Dataset& dataset, const FitSettings& settings,
                              AlloyModel* model);
 
+// The prediction error `error` (another fit's, whose folds stand for this one's) given to
+// `model` with the misfit and replicate scatter measured on `model` itself.
+void CarryPredictionError(const Dataset& dataset, PredictionError error, AlloyModel* model);
+
 // The model against each of its own training samples (color/sample_error.h), kept in the
 // model (AlloyModel::in_sample) with a warning for each sample it misses by more than
 // kInSampleMissDe00 (or kInSampleMissReflectance for data without colour).

@@ -2,7 +2,9 @@
 
 #include <memory>
 
+#include "alloycolor/core/dataset.h"
 #include "alloycolor/core/error.h"
+#include "alloycolor/core/text.h"
 #include "alloycolor/model/registry.h"
 #include "folds.h"
 
@@ -17,6 +19,15 @@ std::unique_ptr<AlloyModel> BuildModel(const std::string& method, const Dataset&
     FitSettings with_memo = settings;
     with_memo.memo = MakeFitMemo();
     return BuildModel(method, dataset, with_memo);
+  }
+  if (DistinctCompositions(dataset).size() < 2) {
+    std::string files;
+    for (const Sample& s : dataset.samples) files += (files.empty() ? "" : ", ") + s.file;
+    throw Error(dataset.manifest_path + ": a model needs samples at two compositions at least; " +
+                (dataset.samples.empty() ? std::string("there are none")
+                                         : "every sample is at x = " +
+                                               FormatNumber(dataset.samples.front().x_given) +
+                                               " (" + files + ")"));
   }
   if (method == kAutoMethod) return BuildAuto(dataset, settings);
   AttachBuiltInBuilders();

@@ -302,6 +302,14 @@ void RecordInSampleError(const Dataset& dataset, const FitSettings& settings, Al
   model->set_in_sample(std::move(rows));
 }
 
+void CarryPredictionError(const Dataset& dataset, PredictionError error, AlloyModel* model) {
+  error.misfit.clear();
+  error.scatter.clear();
+  error.misfit_lambda_nm.clear();
+  AddMisfit(dataset, *model, MisfitGrid(model->lambda_min_nm(), model->lambda_max_nm()), &error);
+  model->set_prediction_error(std::move(error));
+}
+
 double SigmaCalibration(const std::vector<double>& log_ratios) {
   if (log_ratios.empty()) return 1;
   // The one-sigma is the RMS colour difference of the draws: the factor makes the folds'

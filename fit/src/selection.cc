@@ -238,7 +238,7 @@ Scored BuildChoosingDegree(const MethodInfo& method, const Dataset& dataset,
       return refused;
     }
     if (chosen.model->prediction_error().present()) {
-      finished->set_prediction_error(chosen.model->prediction_error());
+      CarryPredictionError(dataset, chosen.model->prediction_error(), finished.get());
     }
     chosen.model = std::move(finished);
   }

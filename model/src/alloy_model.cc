@@ -261,16 +261,21 @@ std::vector<std::vector<std::complex<double>>> AlloyModel::PermittivityDraws(
   std::mt19937 precision_rng(seed + 1);  // apart, so that the scale's draws stay as they were
   std::normal_distribution<double> normal;
   std::vector<std::vector<std::complex<double>>> draws(count, centre);
+  // Antithetic pairs: draw 2k + 1 takes the normal terms of draw 2k with the other sign,
+  // so that no pair comes nearer the misfit's point than the misfit alone.
+  std::complex<double> z, noise;
   for (int d = 0; d < count; ++d) {
-    const std::complex<double> z(normal(rng), normal(rng));
+    if (d % 2 == 0) {
+      z = {normal(rng), normal(rng)};
+      if (e.precision > 0) noise = {normal(precision_rng), normal(precision_rng)};
+    } else {
+      z = -z;
+      noise = -noise;
+    }
     const double scatter_sign = (d / 2) % 2 == 0 ? 1.0 : -1.0;
     const std::vector<std::complex<double>>* replicate =
         scatter.empty() ? nullptr : &scatter[(d / 4) % scatter.size()];
-    std::complex<double> floor = 0.0;
-    if (e.precision > 0) {
-      floor = e.precision / std::sqrt(2.0) *
-              std::complex<double>(normal(precision_rng), normal(precision_rng));
-    }
+    const std::complex<double> floor = e.precision / std::sqrt(2.0) * noise;
     for (size_t i = 0; i < centre.size(); ++i) {
       std::complex<double> relative = scale[i] * z + misfit[i] + floor;
       if (replicate != nullptr) relative += scatter_sign * (*replicate)[i];

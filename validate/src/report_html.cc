@@ -403,7 +403,8 @@ void WriteInSample(const ValidationReport& report, const SplitResult& split, int
 
 void WriteHoldout(const ValidationReport& report, const HoldoutResult& h, int index,
                   std::ostringstream& html) {
-  html << "<h4>Held out: " << XLabel(report, h) << " &mdash; " << EscapeXml(h.file) << "</h4>";
+  html << "<h4>Held out: " << EscapeXml(XLabel(report, h)) << " &mdash; " << EscapeXml(h.file)
+       << "</h4>";
   // Swatches.
   if (!h.srgb8.empty()) {
     for (size_t a = 0; a < report.angles_deg.size(); ++a) {

@@ -1,17 +1,23 @@
-// The explorer page's application script (see explore_page.h): the sliders, the canvas
-// shading from the precomputed tables, the plots and the address state. Kept as plain text
-// so that it reads as the script it is.
-#include "explore_page.h"
-
-namespace alloycolor::app {
-
-const char kExploreAppJs[] = R"JS(
 "use strict";
+// The explorer page's script (app/explore_page.h): the sliders, the canvas shading from
+// the program's tables, the plots and the address. The formulas are colour.js's, the
+// parsing of what a user types input.js's; this file holds the page's state and elements.
 (() => {
-const C = AlloyColour;
+const C = AlloyColour, I = AlloyInput;
 const D = JSON.parse(document.getElementById("explorer-data").textContent);
 const $ = (id) => document.getElementById(id);
 const T = D.table;
+
+// Elements are built from nodes: text from the data (names, paths, sources) only ever
+// becomes text nodes or attribute values, never markup.
+function build(node, attrs, children) {
+  for (const [name, value] of Object.entries(attrs)) node.setAttribute(name, value);
+  node.append(...children);
+  return node;
+}
+const el = (tag, attrs = {}, ...children) => build(document.createElement(tag), attrs, children);
+const SVG_NS = document.querySelector("svg").namespaceURI;  // the plots' own namespace
+const svgEl = (tag, attrs = {}, ...children) => build(document.createElementNS(SVG_NS, tag), attrs, children);
 
 // ---- Decoding the program's tables.
 function bytes(b64) {
@@ -32,8 +38,9 @@ const SPECTRA = { n: f32(T.n), k: f32(T.k), r: f32(T.r) };
 const SIGMA_ANGLES = T.sigma_angles_deg;
 const X_LO = D.x_range[0], X_HI = D.x_range[1];
 const SYS = D.system;
-const GOLD = SYS.a === "Au" ? "a" : SYS.b === "Au" ? "b" : null;
 const MATRIX = D.srgb_matrix;
+const FINISHES = T.roughness;
+const CTX = { sys: SYS, x_range: D.x_range, illuminants: ILLS.map((ill) => ill.name), roughness: FINISHES };
 
 function decodeTile(t) {
   const size = t.size, cov = bytes(t.coverage);
@@ -93,12 +100,6 @@ function rowAt(ill, r, x) {
   }
   return out;
 }
-function xyzAt(row, mu) {
-  const m = row.length / 3, t = Math.min(Math.max(mu, 0), 1) * (m - 1);
-  const i = Math.min(Math.floor(t), m - 2), f = t - i, a = 3 * i;
-  return [row[a] + f * (row[a + 3] - row[a]), row[a + 1] + f * (row[a + 4] - row[a + 1]),
-          row[a + 2] + f * (row[a + 5] - row[a + 2])];
-}
 function spectrumAt(x) {
   const { first, w } = weightsAt(x), out = {};
   for (const key of ["n", "k", "r"]) {
@@ -108,90 +109,19 @@ function spectrumAt(x) {
   }
   return out;
 }
-// Linear in x between nodes and in angle between the sigma angles.
 function sigmaAt(ill, x, angle) {
   const s = ILLS[ill].sigma;
-  if (!s) return null;
-  const seg = C.findSegment(SEGMENTS, x), step = (seg.hi - seg.lo) / seg.intervals;
-  const u = Math.min(Math.max((x - seg.lo) / step, 0), seg.intervals);
-  const i = Math.min(Math.floor(u), seg.intervals - 1), f = u - i, node = seg.first + i;
-  const na = SIGMA_ANGLES.length;
-  let a = 0;
-  while (a + 2 < na && angle > SIGMA_ANGLES[a + 1]) a++;
-  const g = na > 1 ? Math.min(Math.max((angle - SIGMA_ANGLES[a]) / (SIGMA_ANGLES[a + 1] - SIGMA_ANGLES[a]), 0), 1) : 0;
-  const at = (nd) => (na > 1 ? s[nd * na + a] * (1 - g) + s[nd * na + a + 1] * g : s[nd * na]);
-  return at(node) * (1 - f) + at(node + 1) * f;
-}
-
-// ---- Compositions.
-const weight = (x) => C.weightFromAtomic(x, SYS.mass_a, SYS.mass_b);
-const karat = (x) => (GOLD === "a" ? 24 * weight(x) : GOLD === "b" ? 24 * (1 - weight(x)) : null);
-function parseComposition(text) {
-  const s = String(text).trim().toLowerCase().replace(/\s+/g, "");
-  let m;
-  if ((m = s.match(/^([0-9]*\.?[0-9]+)(k|kt|karat)$/))) {
-    if (!GOLD) return NaN;
-    const wGold = parseFloat(m[1]) / 24;
-    return C.atomicFromWeight(GOLD === "a" ? wGold : 1 - wGold, SYS.mass_a, SYS.mass_b);
-  }
-  if ((m = s.match(/^([0-9]*\.?[0-9]+)wt%$/))) return C.atomicFromWeight(parseFloat(m[1]) / 100, SYS.mass_a, SYS.mass_b);
-  if ((m = s.match(/^([0-9]*\.?[0-9]+)(at)?%$/))) return parseFloat(m[1]) / 100;
-  if ((m = s.match(/^([0-9]*\.?[0-9]+)$/))) return parseFloat(m[1]);
-  return NaN;
-}
-const inRange = (x) => x >= X_LO - 1e-9 && x <= X_HI + 1e-9;
-const clampX = (x) => Math.min(Math.max(x, X_LO), X_HI);
-function describe(x) {
-  const at = (100 * x).toFixed(1) + " at% " + SYS.a, wt = (100 * weight(x)).toFixed(1) + " wt%";
-  const k = karat(x);
-  return { main: k !== null ? k.toFixed(1) + " k" : at, rest: k !== null ? at + " · " + wt + " " + SYS.a : wt + " " + SYS.a };
+  return s ? C.nodeAngleLinear(s, SEGMENTS, SIGMA_ANGLES, x, angle) : null;
 }
 
 // ---- State, kept in the address.
-const FINISHES = T.roughness;
-const state = { x: null, x2: null, ill: null, angle: 0, light: "studio", rough: 0 };
-function defaults() {
-  const k18 = GOLD ? parseComposition("18k") : NaN, k14 = GOLD ? parseComposition("14k") : NaN;
-  const d65 = ILLS.findIndex((i) => i.name === "D65");
-  return {
-    x: inRange(k18) ? k18 : X_LO + 0.75 * (X_HI - X_LO),
-    x2: inRange(k14) ? k14 : X_LO + 0.5 * (X_HI - X_LO),
-    ill: d65 >= 0 ? d65 : 0, angle: 0, light: "studio", rough: 0,
-  };
-}
+const state = I.defaultView(CTX);
 function readHash() {
-  Object.assign(state, defaults());
-  const params = new URLSearchParams(location.hash.replace(/^#/, ""));
-  const bad = [];
-  const comp = (key) => {
-    if (!params.has(key)) return;
-    const v = parseComposition(params.get(key));
-    if (Number.isFinite(v) && inRange(v)) state[key] = clampX(v); else bad.push(key);
-  };
-  comp("x"); comp("x2");
-  if (params.has("ill")) {
-    const i = ILLS.findIndex((ill) => ill.name.toLowerCase() === params.get("ill").toLowerCase());
-    if (i >= 0) state.ill = i; else bad.push("ill");
-  }
-  if (params.has("angle")) {
-    const a = parseFloat(params.get("angle"));
-    if (a >= 0 && a <= 90) state.angle = a; else bad.push("angle");
-  }
-  if (params.has("light")) {
-    const l = params.get("light");
-    if (l === "studio" || l === "uniform") state.light = l; else bad.push("light");
-  }
-  if (params.has("rough")) {
-    const r = FINISHES.findIndex((v) => Math.abs(v - parseFloat(params.get("rough"))) < 1e-9);
-    if (r >= 0) state.rough = r; else bad.push("rough");
-  }
+  const { view, bad } = I.parseAddress(location.hash, CTX);
+  Object.assign(state, view);
   document.body.dataset.badParameters = bad.join(",");
 }
-const fmtX = (x) => String(Math.round(x * 1e6) / 1e6);
-function stateString() {
-  return "x=" + fmtX(state.x) + "&x2=" + fmtX(state.x2) + "&ill=" + ILLS[state.ill].name +
-         "&angle=" + state.angle + "&light=" + state.light + "&rough=" + FINISHES[state.rough];
-}
+const stateString = () => I.formatAddress(state, CTX);
 function writeHash() {
   const s = stateString();
   if (location.hash.replace(/^#/, "") !== s) history.replaceState(null, "", "#" + s);
@@ -233,7 +163,7 @@ function drawTile(canvas, tile, row, light) {
 
 function metal(x) {
   const row0 = rowAt(state.ill, 0, x);
-  const xyz = xyzAt(row0, Math.max(0, Math.cos(state.angle * Math.PI / 180)));
+  const xyz = C.xyzAtMu(row0, Math.max(0, Math.cos(state.angle * Math.PI / 180)));
   const lab = C.labFromXYZ(xyz, ILLS[state.ill].white);
   const linear = C.linearSRGBFromXYZ(MATRIX, xyz);
   const rgb8 = linear.map(C.srgb8);
@@ -242,21 +172,24 @@ function metal(x) {
 }
 
 const fixed = (v, n) => (Math.abs(v) < 0.5 * Math.pow(10, -n) ? 0 : v).toFixed(n);
-function value(id, text, data) { return `<dd id="${id}" data-value="${data}">${text}</dd>`; }
 function fillCard(key, m) {
   const clipped = m.linear.some((v) => v < 0 || v > 1);
-  const sigma = m.sigma === null ? "none" : m.sigma;
-  $("card-" + key).innerHTML =
-    `<div class="swatch" id="${key}-swatch" style="background:${m.hex}"></div>` +
-    `<div class="hexline"><div class="hex" id="${key}-hex" data-value="${m.hex}">${m.hex}</div>` +
-    `<div class="cond">${ILLS[state.ill].name}, ${D.observer}° observer, ${fixed(state.angle, 1)}° incidence, polished</div></div>` +
-    `<dl class="values">` +
-    `<dt>sRGB 8-bit</dt>` + value(key + "-srgb8", m.rgb8.join(", ") + (clipped ? " (clipped)" : ""), m.rgb8.join(",")) +
-    `<dt>linear sRGB</dt>` + value(key + "-linear", m.linear.map((v) => fixed(v, 4)).join("  "), m.linear.join(",")) +
-    `<dt>CIELAB</dt>` + value(key + "-lab", "L* " + fixed(m.lab[0], 2) + "  a* " + fixed(m.lab[1], 2) + "  b* " + fixed(m.lab[2], 2), m.lab.join(",")) +
-    `<dt>XYZ</dt>` + value(key + "-xyz", m.xyz.map((v) => fixed(v, 4)).join("  "), m.xyz.join(",")) +
-    `<dt>uncertainty</dt>` + value(key + "-sigma", m.sigma === null ? "none (the " + D.method + " model has no error bar)" : "ΔE00 " + fixed(m.sigma, 3) + " (one sigma)", sigma) +
-    `</dl>`;
+  const row = (label, id, text, data) => [el("dt", {}, label), el("dd", { id: key + "-" + id, "data-value": data }, text)];
+  const swatch = el("div", { class: "swatch", id: key + "-swatch" });
+  swatch.style.background = m.hex;
+  $("card-" + key).replaceChildren(
+    swatch,
+    el("div", { class: "hexline" },
+       el("div", { class: "hex", id: key + "-hex", "data-value": m.hex }, m.hex),
+       el("div", { class: "cond" }, `${ILLS[state.ill].name}, ${D.observer}° observer, ${fixed(state.angle, 1)}° incidence, polished`)),
+    el("dl", { class: "values" },
+       ...row("sRGB 8-bit", "srgb8", m.rgb8.join(", ") + (clipped ? " (clipped)" : ""), m.rgb8.join(",")),
+       ...row("linear sRGB", "linear", m.linear.map((v) => fixed(v, 4)).join("  "), m.linear.join(",")),
+       ...row("CIELAB", "lab", "L* " + fixed(m.lab[0], 2) + "  a* " + fixed(m.lab[1], 2) + "  b* " + fixed(m.lab[2], 2), m.lab.join(",")),
+       ...row("XYZ", "xyz", m.xyz.map((v) => fixed(v, 4)).join("  "), m.xyz.join(",")),
+       ...row("uncertainty", "sigma",
+              m.sigma === null ? "none (the " + D.method + " model has no error bar)" : "ΔE00 " + fixed(m.sigma, 3) + " (one sigma)",
+              m.sigma === null ? "none" : m.sigma)));
 }
 
 function verdict(de) {
@@ -289,26 +222,30 @@ function plot(svgId, label, key, curves) {
   const pad = 0.04 * (hi - lo || 1); hi += pad;
   const sx = (l) => L + (l - l0) / (l1 - l0) * (W - L - R);
   const sy = (v) => TOP + (hi - v) / (hi - lo) * (H - TOP - B);
-  let s = "";
+  const nodes = [];
   for (const t of niceTicks(lo, hi, 5)) {
-    s += `<line class="grid" x1="${L}" x2="${W - R}" y1="${sy(t)}" y2="${sy(t)}"/><text x="${L - 5}" y="${sy(t) + 4}" text-anchor="end">${t}</text>`;
+    nodes.push(svgEl("line", { class: "grid", x1: L, x2: W - R, y1: sy(t), y2: sy(t) }),
+               svgEl("text", { x: L - 5, y: sy(t) + 4, "text-anchor": "end" }, String(t)));
   }
   for (const t of niceTicks(l0, l1, 5)) {
-    s += `<line class="axis" x1="${sx(t)}" x2="${sx(t)}" y1="${H - B}" y2="${H - B + 4}"/><text x="${sx(t)}" y="${H - B + 16}" text-anchor="middle">${t}</text>`;
+    nodes.push(svgEl("line", { class: "axis", x1: sx(t), x2: sx(t), y1: H - B, y2: H - B + 4 }),
+               svgEl("text", { x: sx(t), y: H - B + 16, "text-anchor": "middle" }, String(t)));
   }
-  s += `<line class="axis" x1="${L}" x2="${W - R}" y1="${H - B}" y2="${H - B}"/>`;
-  s += `<text x="${(L + W - R) / 2}" y="${H - 4}" text-anchor="middle">wavelength (nm)</text>`;
-  s += `<text x="${L + 6}" y="${TOP + 10}" style="fill:#ebe8e1;font-size:13px;font-weight:600">${label}</text>`;
+  nodes.push(svgEl("line", { class: "axis", x1: L, x2: W - R, y1: H - B, y2: H - B }),
+             svgEl("text", { x: (L + W - R) / 2, y: H - 4, "text-anchor": "middle" }, "wavelength (nm)"),
+             svgEl("text", { x: L + 6, y: TOP + 10, style: "fill:#ebe8e1;font-size:13px;font-weight:600" }, label));
   for (const c of curves) {
     const pts = [];
     for (let i = 0; i < c.x.length; i++) if (c.x[i] >= l0 && c.x[i] <= l1) pts.push(sx(c.x[i]).toFixed(1) + "," + sy(c.y[i]).toFixed(1));
-    s += `<polyline class="${c.cls}" points="${pts.join(" ")}"${c.color ? ` style="stroke:${c.color}"` : ""}><title>${c.title}</title></polyline>`;
+    const line = svgEl("polyline", { class: c.cls, points: pts.join(" ") }, svgEl("title", {}, c.title));
+    if (c.color) line.style.stroke = c.color;
+    nodes.push(line);
   }
-  svg.innerHTML = s;
+  svg.replaceChildren(...nodes);
 }
 function drawPlots(a, b) {
   const sa = spectrumAt(a.x), sb = spectrumAt(b.x);
-  const labelA = "A " + describe(a.x).main, labelB = "B " + describe(b.x).main;
+  const labelA = "A " + I.describeComposition(a.x, SYS).main, labelB = "B " + I.describeComposition(b.x, SYS).main;
   for (const [id, key, label] of [["plot-n", "n", "n"], ["plot-k", "k", "k"], ["plot-r", "r", "R at normal incidence"]]) {
     const curves = D.samples.map((s) => ({ x: s.lambda_nm, y: s[key], cls: "sample" + (s.measured ? "" : " model"), title: s.label }));
     curves.push({ x: T.lambda_nm, y: sb[key], cls: "curve b", color: b.hex, title: labelB });
@@ -316,8 +253,11 @@ function drawPlots(a, b) {
     plot(id, label, key, curves);
   }
   const measured = D.samples.length && D.samples[0].measured;
-  $("legend").innerHTML = `<i style="border-color:${a.hex}"></i>${labelA}<i class="dash" style="border-color:${b.hex}"></i>${labelB}` +
-    `<i class="sample"></i>${measured ? "measured samples" : "the model at its training compositions"} (hover for names). ${D.samples_note}`;
+  const swatchA = el("i"), swatchB = el("i", { class: "dash" });
+  swatchA.style.borderColor = a.hex;
+  swatchB.style.borderColor = b.hex;
+  $("legend").replaceChildren(swatchA, labelA, swatchB, labelB, el("i", { class: "sample" }),
+    `${measured ? "measured samples" : "the model at its training compositions"} (hover for names). ${D.samples_note}`);
 }
 
 // ---- The page.
@@ -334,8 +274,8 @@ function render() {
     }
     $("stage-" + key).classList.toggle("uniform", !studio);
     fillCard(key, m);
-    const d = describe(m.x);
-    $(key + "-readout").innerHTML = `<b>${d.main}</b> · ${d.rest}`;
+    const d = I.describeComposition(m.x, SYS);
+    $(key + "-readout").replaceChildren(el("b", {}, d.main), " · " + d.rest);
     const input = $("x-" + key), text = $("x-" + key + "-text");
     if (Math.abs(parseFloat(input.value) - m.x) > 1e-12) input.value = m.x;
     if (document.activeElement !== text) { text.value = d.main; text.classList.remove("bad"); }
@@ -361,8 +301,9 @@ function update() { if (!pending) { pending = true; requestAnimationFrame(render
 function setup() {
   const trainingNote = D.training.length + " training sample" + (D.training.length === 1 ? "" : "s");
   $("model-line").textContent = `${D.method} model · ${trainingNote} · ${D.source} · ${D.observer}° observer · ${D.generator}`;
-  $("ill-buttons").innerHTML = ILLS.map((ill, i) => `<button type="button" data-ill="${i}">${ill.name}</button>`).join("");
-  $("finish-buttons").innerHTML = FINISHES.map((r, i) => `<button type="button" data-rough="${i}" title="GGX roughness ${r}">${D.finishes[i]}</button>`).join("");
+  $("ill-buttons").replaceChildren(...ILLS.map((ill, i) => el("button", { type: "button", "data-ill": i }, ill.name)));
+  $("finish-buttons").replaceChildren(...FINISHES.map((r, i) =>
+    el("button", { type: "button", "data-rough": i, title: "GGX roughness " + r }, D.finishes[i])));
   for (const btn of document.querySelectorAll("#ill-buttons button")) btn.onclick = () => { state.ill = +btn.dataset.ill; update(); };
   for (const btn of document.querySelectorAll("#light-buttons button")) btn.onclick = () => { state.light = btn.dataset.light; update(); };
   for (const btn of document.querySelectorAll("#finish-buttons button")) btn.onclick = () => { state.rough = +btn.dataset.rough; update(); };
@@ -376,24 +317,38 @@ function setup() {
     input.min = X_LO; input.max = X_HI;
     input.oninput = () => { state[field] = parseFloat(input.value); update(); };
     text.onchange = () => {
-      const v = parseComposition(text.value);
-      if (Number.isFinite(v) && inRange(v)) { state[field] = clampX(v); text.classList.remove("bad"); text.blur(); update(); }
-      else text.classList.add("bad");
+      const v = I.compositionInRange(text.value, CTX);
+      if (Number.isNaN(v)) { text.classList.add("bad"); return; }
+      state[field] = v; text.classList.remove("bad"); text.blur(); update();
     };
-    $("ticks-" + key).innerHTML = D.training.map((s) => {
-      const f = (s.x - X_LO) / (X_HI - X_LO || 1);
-      return `<button type="button" class="tick" style="left:${(100 * f).toFixed(3)}%" data-x="${s.x}" title="measured: ${s.file}">${(100 * s.x).toFixed(0)}</button>`;
-    }).join("");
-    for (const tick of $("ticks-" + key).querySelectorAll(".tick")) tick.onclick = () => { state[field] = +tick.dataset.x; update(); };
+    $("ticks-" + key).replaceChildren(...D.training.map((s) => {
+      const tick = el("button", { type: "button", class: "tick", "data-x": s.x, title: "measured: " + s.file },
+                      (100 * s.x).toFixed(0));
+      tick.style.left = (100 * (s.x - X_LO) / (X_HI - X_LO || 1)).toFixed(3) + "%";
+      tick.onclick = () => { state[field] = s.x; update(); };
+      return tick;
+    }));
   }
   const roughNote = FINISHES.length > 1
     ? ` The finishes other than polished are GGX microfacet surfaces (roughness ${FINISHES.slice(1).join(", ")}), tabulated the same way; they change the pictures only.`
     : "";
-  $("about").innerHTML =
-    `<p>Every number and pixel comes from tables the program <b>alloycolor ${D.generator.replace(/^alloycolor /, "")}</b> computed with the same spectral chain as <code>alloycolor color</code> and <code>alloycolor render</code>: n, k of the ${D.method} model → Fresnel reflectance at the angle of incidence (Rs + Rp)/2 → CIE XYZ under the illuminant (${D.observer}° observer) → CIELAB (the illuminant's white) and sRGB (IEC 61966-2-1, no chromatic adaptation). The page interpolates: <b>linearly in the cosine of the angle</b> (${M} nodes) and <b>cubically in composition</b> (${T.nodes} nodes, breaks at the measured compositions).</p>` +
-    `<p id="table-error" data-max-de00="${T.max_de00}" data-max-srgb8="${T.max_srgb8_difference}">How far off it can be: against direct spectral evaluation at ${T.check_points.toLocaleString("en")} check points (every node and midpoint in composition × every node and midpoint in angle, all illuminants), the largest error is <b>ΔE00 ${T.max_de00.toPrecision(2)}</b> and <b>${T.max_srgb8_difference} in 8-bit sRGB</b>. The one-sigma ΔE00 is interpolated linearly between nodes and between the angles ${SIGMA_ANGLES.join(", ")}°.</p>` +
-    `<p>Pictures: each pixel is the table's colour at that pixel's angle of incidence, as the renderer does; in <b>Uniform</b> light that is all (the sphere's centre is the colour at 0°, the rim goes toward white); in <b>Studio</b> light it is scaled by the brightness of the light tent in the mirror direction (for rough finishes, the tent blurred by the microfacet lobe).${roughNote} Outlines are anti-aliased with the renderer's 4 × 4 coverage.</p>` +
-    `<p>The address holds the view (x = atomic fraction of ${SYS.a}; 18k, 75wt% are accepted too): <code id="state-example"></code></p>`;
+  const b = (text) => el("b", {}, text);
+  $("about").replaceChildren(
+    el("p", {}, "Every number and pixel comes from tables the program ", b(D.generator),
+       " computed with the same spectral chain as ", el("code", {}, "alloycolor color"), " and ",
+       el("code", {}, "alloycolor render"),
+       `: n, k of the ${D.method} model → Fresnel reflectance at the angle of incidence (Rs + Rp)/2 → CIE XYZ under the illuminant (${D.observer}° observer) → CIELAB (the illuminant's white) and sRGB (IEC 61966-2-1, no chromatic adaptation). The page interpolates: `,
+       b("linearly in the cosine of the angle"), ` (${M} nodes) and `, b("cubically in composition"),
+       ` (${T.nodes} nodes, breaks at the measured compositions).`),
+    el("p", { id: "table-error", "data-max-de00": T.max_de00, "data-max-srgb8": T.max_srgb8_difference },
+       `How far off it can be: against direct spectral evaluation at ${T.check_points.toLocaleString("en")} check points (every node and midpoint in composition × every node and midpoint in angle, all illuminants), the largest error is `,
+       b("ΔE00 " + T.max_de00.toPrecision(2)), " and ", b(T.max_srgb8_difference + " in 8-bit sRGB"),
+       `. The one-sigma ΔE00 is interpolated linearly between nodes and between the angles ${SIGMA_ANGLES.join(", ")}°.`),
+    el("p", {}, "Pictures: each pixel is the table's colour at that pixel's angle of incidence, as the renderer does; in ",
+       b("Uniform"), " light that is all (the sphere's centre is the colour at 0°, the rim goes toward white); in ",
+       b("Studio"), ` light it is scaled by the brightness of the light tent in the mirror direction (for rough finishes, the tent blurred by the microfacet lobe).${roughNote} Outlines are anti-aliased with the renderer's 4 × 4 coverage.`),
+    el("p", {}, `The address holds the view (x = atomic fraction of ${SYS.a}; 18k, 75wt% are accepted too): `,
+       el("code", { id: "state-example" })));
   readHash();
   window.addEventListener("hashchange", () => { if (location.hash.replace(/^#/, "") !== stateString()) { readHash(); render(); } });
   render();
@@ -401,6 +356,3 @@ function setup() {
 }
 setup();
 })();
-)JS";
-
-}  // namespace alloycolor::app

@@ -64,8 +64,8 @@ std::string NotADataset(const std::string& arg, bool takes_nk) {
     case InputKind::kModelFile:
       return arg + ": this is a model file: use --model";
     case InputKind::kNkFile:
-      return arg + ": this is one sample's n,k, not a data set (a folder or manifest, " +
-             "dataset.json, listing n,k files at several compositions; see docs/data.md)" +
+      return arg + ": this is one sample's n,k, not a data set (a folder or a dataset.json " +
+             "manifest listing n,k files at several compositions; see docs/data.md)" +
              (takes_nk ? "; for this sample alone use --nk" : "");
     default:
       return "";

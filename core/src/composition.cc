@@ -218,9 +218,9 @@ double ParseComposition(const std::string& text, const AlloySystem& system) {
   if (view.empty()) Fail("empty composition");
   number(0);
   if (value > 1 && value <= 100) {
-    const std::string number(view);
-    Fail(quoted + " lies outside [0, 1] (an atomic fraction); did you mean " + number + "at% or " +
-         number + "wt%?");
+    const std::string written(view);
+    Fail(quoted + " lies outside [0, 1] (an atomic fraction); did you mean " + written + "at% or " +
+         written + "wt%?");
   }
   if (!(value >= 0 && value <= 1)) {
     Fail(quoted + " lies outside [0, 1] (an atomic fraction; write at% or wt% for percent)");

@@ -168,6 +168,15 @@ std::vector<double> ParseCompositions(const std::string& text, const AlloySystem
   return xs;
 }
 
+double ParseCompositionArg(const std::string& text, const AlloySystem& system,
+                           const std::string& option) {
+  try {
+    return ParseComposition(text, system);
+  } catch (const Error& e) {
+    throw Error(option + ": " + e.what());
+  }
+}
+
 std::vector<const Sample*> SamplesAt(const std::string& text, const Dataset& dataset,
                                      const std::string& option) {
   const auto list = [&dataset] {

@@ -44,6 +44,9 @@ color::Colorimeter LoadColorimeter(const std::string& illuminant, int observer_d
 // name `option`.
 std::vector<double> ParseCompositions(const std::string& text, const AlloySystem& system,
                                       const std::string& option);
+// One composition, naming the option on error.
+double ParseCompositionArg(const std::string& text, const AlloySystem& system,
+                           const std::string& option);
 // The samples of `dataset` at the comma-separated compositions of `text`, each once, in
 // the order given: a plain number matches a sample's atomic fraction or, failing that, the
 // number the manifest gives it (a weight fraction in a weight-fraction manifest); 75at%,

@@ -306,6 +306,8 @@ TEST_F(BadInput, AMalformedCompositionSaysWhatIsAccepted) {
   EXPECT_EQ(RunProgram(Args(color, {"--x", "abc"})).err.find("did you mean"), std::string::npos);
   ExpectCleanError({"predict", "--data", "Au-Ag", "--method", "paper", "--x", "50at"},
                    {"--x: composition '50at': did you mean 50at%?"});
+  ExpectCleanError({"sweep", "--data", "Au-Ag", "--method", "paper", "--from", "75wt"},
+                   {"--from: composition '75wt': did you mean 75wt%?"});
 }
 
 TEST_F(BadInput, ADataSetGivenAsAModelAndTheReverseAreNamed) {

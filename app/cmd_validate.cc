@@ -170,6 +170,29 @@ std::string SummaryText(const nlohmann::json& report) {
       Appendf(&text, "\n");
     }
   }
+  // The composition recovered from each held-out sample's colour (report.json's
+  // composition_recovery): mean |error| in at%, and how many lay within two sigma.
+  const auto& recovery = report["composition_recovery"];
+  if (!recovery.empty()) {
+    for (const bool sigma_row : {false, true}) {
+      std::printf("%-18s", sigma_row ? "recovered_in_2sig" : "recovery_at%");
+      for (const auto& m : methods) {
+        const std::string name = m.get<std::string>();
+        char buf[48];
+        if (!recovery.contains(name)) {
+          std::snprintf(buf, sizeof buf, "-");
+        } else if (sigma_row) {
+          std::snprintf(buf, sizeof buf, "%d/%d", recovery[name]["within_2_sigma"].get<int>(),
+                        recovery[name]["with_sigma"].get<int>());
+        } else {
+          std::snprintf(buf, sizeof buf, "%.3g",
+                        recovery[name]["mean_abs_error_at_percent"].get<double>());
+        }
+        std::printf(" %16s", buf);
+      }
+      std::printf("\n");
+    }
+  }
   if (!report["delta_e00_available"].get<bool>()) {
     Appendf(&text, "delta_e00: %s\n", report["metric_ranges"]["delta_e00"].get<std::string>().c_str());
   }

@@ -263,7 +263,7 @@ std::string MethodsHelp() {
   return text;
 }
 
-void ModelSource::AddOptions(CLI::App* cmd, bool with_data) {
+void ModelSource::AddOptions(CLI::App* cmd, bool with_data, bool with_extrapolate) {
   cmd->add_option("--model", model_path, "Fitted model file (JSON, from 'alloycolor fit')");
   if (with_data) {
     cmd->add_option("--data", data_dir,
@@ -273,8 +273,10 @@ void ModelSource::AddOptions(CLI::App* cmd, bool with_data) {
                     "Model built from --data: auto (chosen by leave-one-out), " + MethodsHelp())
         ->capture_default_str();
   }
-  cmd->add_flag("--extrapolate", extrapolate,
-                "Allow compositions outside the training samples' range");
+  if (with_extrapolate) {
+    cmd->add_flag("--extrapolate", extrapolate,
+                  "Allow compositions outside the training samples' range");
+  }
 }
 
 std::unique_ptr<AlloyModel> ModelSource::Load(bool quiet) const {
@@ -384,6 +386,28 @@ void CheckComposition(const AlloyModel& model, double x_atomic, bool extrapolate
     throw Error("composition " + std::to_string(x_atomic) + " lies outside [0, 1]");
   }
   if (!extrapolate) model.CheckInRange(x_atomic);
+}
+
+std::string DescribeComposition(double x_atomic, const AlloySystem& system) {
+  char text[160];
+  const std::string a = system.a.symbol;
+  const double w = WeightFromAtomicFraction(x_atomic, system);
+  std::snprintf(text, sizeof text, "%.4f (%.2f at%% %s, %.2f wt%% %s", x_atomic, 100 * x_atomic,
+                a.c_str(), 100 * w, a.c_str());
+  std::string out = text;
+  if (IsGoldAlloy(system)) {
+    std::snprintf(text, sizeof text, ", %.2f k", KaratFromAtomicFraction(x_atomic, system));
+    out += text;
+  }
+  return out + ")";
+}
+
+nlohmann::json CompositionJson(double x_atomic, const AlloySystem& system) {
+  nlohmann::json out = {{"x_atomic", x_atomic},
+                        {"at_percent", 100 * x_atomic},
+                        {"wt_percent", 100 * WeightFromAtomicFraction(x_atomic, system)}};
+  if (IsGoldAlloy(system)) out["karat"] = KaratFromAtomicFraction(x_atomic, system);
+  return out;
 }
 
 }  // namespace alloycolor::app

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 #include "alloycolor/model/alloy_model.h"
 #include "alloycolor/core/dataset.h"
@@ -81,7 +82,8 @@ struct ModelSource {
   std::string method = "auto";
   bool extrapolate = false;
   bool takes_nk = false;  // the command takes --nk too (MaterialSource), for messages
-  void AddOptions(CLI::App* cmd, bool with_data);
+  // with_extrapolate: offer --extrapolate (not for commands that keep to the model's range).
+  void AddOptions(CLI::App* cmd, bool with_data, bool with_extrapolate = true);
   // Loads or builds the model; throws Error when neither or both are given.
   std::unique_ptr<AlloyModel> Load(bool quiet) const;
 };
@@ -123,6 +125,12 @@ void CheckOutputFolder(const std::string& path, const std::string& option);
 // Checks x against the model's range unless extrapolation is allowed.
 void CheckComposition(const AlloyModel& model, double x_atomic, bool extrapolate);
 
+// A composition as the program prints it: "0.7512 (75.12 at% Au, 84.6 wt% Au, 20.3 k)"
+// (karat for gold alloys only), and the same as JSON fields x_atomic, at_percent,
+// wt_percent and, for gold alloys, karat.
+std::string DescribeComposition(double x_atomic, const AlloySystem& system);
+nlohmann::json CompositionJson(double x_atomic, const AlloySystem& system);
+
 // Subcommand registration (one file each).
 void RegisterColor(CLI::App& app);
 void RegisterFit(CLI::App& app);
@@ -134,6 +142,8 @@ void RegisterChart(CLI::App& app);
 void RegisterParams(CLI::App& app);
 void RegisterSweep(CLI::App& app);
 void RegisterExplore(CLI::App& app);
+void RegisterMatch(CLI::App& app);
+void RegisterTolerance(CLI::App& app);
 
 }  // namespace alloycolor::app
 

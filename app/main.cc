@@ -114,6 +114,8 @@ int main(int argc, char** argv) {
   alloycolor::app::RegisterParams(app);
   alloycolor::app::RegisterSweep(app);
   alloycolor::app::RegisterExplore(app);
+  alloycolor::app::RegisterMatch(app);
+  alloycolor::app::RegisterTolerance(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Benchmarks, each figure beside the straightforward implementation measured in the same
-# run: colours per second through each model (bench/colour_bench.cc), rendering 1024 x 1024
+# run: colours per second through each model (bench/colour_bench.cc), matches per second
+# (bench/match_bench.cc), rendering 1024 x 1024
 # tiles (bench/render_bench.cc), the end-to-end `alloycolor sweep` of a million
 # compositions, smooth-fit time against data size (bench/fit_bench.cc), and the wall time of
 # `alloycolor validate --loo --methods all` on every bundled data set. Builds build/
@@ -112,6 +113,20 @@ awk -F, '
     for (m = 0; m < 6; ++m) printf " %s %.1f ms", model(m), build[m]
     printf ")\n"
   }' "$out"/colour-*.csv
+
+echo "== from colour to composition (Au-Ag smooth, D65, normal incidence; one core): matches per second"
+"$BUILD_DIR"/bench/match_bench --benchmark_min_time="$min_time" --benchmark_format=csv \
+  >"$out/match.csv" 2>/dev/null
+awk -F, '
+  FNR == 1 { for (i = 1; i <= NF; ++i) { h = $i; gsub(/"/, "", h); col[h] = i }; next }
+  { name = $1; gsub(/"/, "", name); rate[name] = $col["items_per_second"]; order[++n] = name }
+  END {
+    base = rate["BM_BruteForce"]
+    for (i = 1; i <= n; ++i) {
+      printf "  %-22s %10.4g /s  (%.3g ms each; %.3gx brute force)\n", order[i], rate[order[i]],
+             1000 / rate[order[i]], rate[order[i]] / base
+    }
+  }' "$out/match.csv"
 
 echo "== rendering a 1024 x 1024 tile of gold (D65, transparent background): Mpixel/s of wall time"
 render_filter='BM_(Table|First|Reference|Direct)/'

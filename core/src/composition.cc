@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iterator>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -175,6 +176,10 @@ double WeightFromAtomicFraction(double x_a, const AlloySystem& system) {
   return mass_a / (mass_a + mass_b);
 }
 
+namespace {
+bool IsGold(const Element& element) { return std::string_view(element.symbol) == "Au"; }
+}  // namespace
+
 double ParseComposition(const std::string& text, const AlloySystem& system) {
   const std::string_view trimmed = Trim(text);
   const std::string quoted = "composition " + Quote(text);
@@ -206,8 +211,8 @@ double ParseComposition(const std::string& text, const AlloySystem& system) {
   }
   if (EndsWith(view, "kt") || EndsWith(view, "k")) {
     number(EndsWith(view, "kt") ? 2 : 1);
-    const bool a_is_gold = std::string_view(system.a.symbol) == "Au";
-    const bool b_is_gold = std::string_view(system.b.symbol) == "Au";
+    const bool a_is_gold = IsGold(system.a);
+    const bool b_is_gold = IsGold(system.b);
     if (!a_is_gold && !b_is_gold) {
       Fail(quoted + ": karats apply to gold alloys only, not to " + system.Name());
     }
@@ -226,6 +231,14 @@ double ParseComposition(const std::string& text, const AlloySystem& system) {
     Fail(quoted + " lies outside [0, 1] (an atomic fraction; write at% or wt% for percent)");
   }
   return value;
+}
+
+bool IsGoldAlloy(const AlloySystem& system) { return IsGold(system.a) || IsGold(system.b); }
+
+double KaratFromAtomicFraction(double x_a, const AlloySystem& system) {
+  if (!IsGoldAlloy(system)) return std::numeric_limits<double>::quiet_NaN();
+  const double w_a = WeightFromAtomicFraction(x_a, system);
+  return 24 * (IsGold(system.a) ? w_a : 1 - w_a);
 }
 
 double FreeElectronDensityM3(double x_a, const AlloySystem& system) {

@@ -905,16 +905,29 @@ Layout ChooseColumns(const std::string& path, const std::vector<std::string>& na
   return layout;
 }
 
-NkSpectrum ParseDelimited(const std::string& path, std::string_view text, const NkColumns& columns,
-                          std::vector<std::string>* warnings) {
+// A delimited file's lines, its first row of numbers, the header above it and the
+// delimiter: the layout every delimited table shares (n,k files, reflectance spectra).
+struct DelimitedText {
+  std::vector<std::string_view> lines;
+  std::size_t first_row = 0;
+  int header_line = 0;
+  char delimiter = ',';
+  std::vector<std::string> names;
+};
+
+bool IsComment(std::string_view t) { return !t.empty() && t.front() == '#'; }
+
+DelimitedText ScanDelimited(const std::string& path, std::string_view text) {
   if (text.substr(0, 2) == "\xFF\xFE" || text.substr(0, 2) == "\xFE\xFF") {
     Fail(path +
          ":1: the file is UTF-16 text; save it as UTF-8 (or ASCII) so that its header "
          "and rows can be read");
   }
   if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);  // UTF-8 byte order mark
-  const std::vector<std::string_view> lines = Lines(text);
-  const auto is_comment = [](std::string_view t) { return !t.empty() && t.front() == '#'; };
+  DelimitedText scan;
+  scan.lines = Lines(text);
+  const std::vector<std::string_view>& lines = scan.lines;
+  const auto is_comment = IsComment;
 
   // The first row of numbers, and the header above it.
   std::size_t first_row = lines.size();
@@ -959,13 +972,28 @@ NkSpectrum ParseDelimited(const std::string& path, std::string_view text, const 
          "e.g. 'wavelength_nm,n,k' or 'energy_eV,e1,e2' (" +
          std::string(kHeaderAdvice) + ")");
   }
-  const std::string header_at = path + ":" + std::to_string(header_line) + ": ";
   if (names.size() != width) {
     Fail(path + ":" + std::to_string(row_line) + ": expected " + std::to_string(names.size()) +
          " columns (" + JoinNames(names, delimiter) + ", " + DelimiterName(delimiter) +
          "-separated, as the header on line " + std::to_string(header_line) + "), found " +
          std::to_string(width));
   }
+  scan.first_row = first_row;
+  scan.header_line = header_line;
+  scan.delimiter = delimiter;
+  scan.names = std::move(names);
+  return scan;
+}
+
+NkSpectrum ParseDelimited(const std::string& path, std::string_view text, const NkColumns& columns,
+                          std::vector<std::string>* warnings) {
+  const DelimitedText scan = ScanDelimited(path, text);
+  const std::vector<std::string_view>& lines = scan.lines;
+  const auto is_comment = IsComment;
+  const std::size_t first_row = scan.first_row;
+  const int header_line = scan.header_line;
+  const char delimiter = scan.delimiter;
+  const std::vector<std::string>& names = scan.names;
   const Layout layout = ChooseColumns(path, names, header_line, delimiter, columns);
 
   const std::string unit_name = names[layout.abscissa];
@@ -1031,6 +1059,103 @@ NkSpectrum ParseDelimited(const std::string& path, std::string_view text, const 
     k[i] = table.values[1][from];
   }
   return MakeSpectrum(path, lambda_nm, n, k, 1.0, "wavelength_nm");
+}
+
+// A reflectance spectrum: the abscissa and one column of R, as a fraction or, where its
+// header says so ('R (%)', 'reflectance_percent'), in percent.
+MeasuredReflectance ParseReflectance(const std::string& path, std::string_view text,
+                                     std::vector<std::string>* warnings) {
+  const DelimitedText scan = ScanDelimited(path, text);
+  const std::string at = path + ":" + std::to_string(scan.header_line) + ": ";
+  const std::string header = Quote(JoinNames(scan.names, scan.delimiter == ' ' ? ' ' : ','), 120);
+  std::size_t abscissa = scan.names.size();
+  Unit unit = Unit::kNm;
+  for (std::size_t i = 0; i < scan.names.size() && abscissa == scan.names.size(); ++i) {
+    const AbscissaName name = ClassifyAbscissa(scan.names[i]);
+    if (!name.is_abscissa) continue;
+    if (!name.has_unit) {
+      Fail(at + "header column " + Quote(scan.names[i]) + " " + name.problem + "; " +
+           std::string(kHeaderAdvice));
+    }
+    abscissa = i;
+    unit = name.unit;
+  }
+  if (abscissa == scan.names.size()) {
+    Fail(at + "the header " + header + " names no wavelength, energy or wavenumber column; " +
+         std::string(kHeaderAdvice));
+  }
+  std::vector<std::size_t> candidates;
+  for (std::size_t i = 0; i < scan.names.size(); ++i) {
+    if (i == abscissa) continue;
+    const std::vector<std::string> tokens = NameTokens(scan.names[i]);
+    if (std::any_of(tokens.begin(), tokens.end(), [](const std::string& t) {
+          return OneOf(t, {"r", "refl", "reflectance", "reflectivity"});
+        })) {
+      candidates.push_back(i);
+    }
+  }
+  if (candidates.empty() && scan.names.size() == 2) candidates.push_back(1 - abscissa);
+  if (candidates.size() != 1) {
+    Fail(at + "the header " + header + (candidates.empty() ? " names no" : " names several") +
+         " reflectance column; name one column 'R' or 'reflectance' (add '(%)' for percent)");
+  }
+  const std::string& r_name = scan.names[candidates.front()];
+  const std::vector<std::string> r_tokens = NameTokens(r_name);
+  const bool percent = r_name.find('%') != std::string::npos ||
+                       std::any_of(r_tokens.begin(), r_tokens.end(), [](const std::string& t) {
+                         return OneOf(t, {"percent", "pct"});
+                       });
+  const std::string& unit_name = scan.names[abscissa];
+  const Columns described{{unit_name, r_name}};
+  Locator where;
+  where.path = path;
+  where.block_line = scan.header_line;
+  std::vector<Row> rows;
+  int index = 0;
+  for (std::size_t i = scan.first_row; i < scan.lines.size(); ++i) {
+    const std::string_view t = Trim(scan.lines[i]);
+    if (t.empty() || IsComment(t)) continue;
+    const int line = static_cast<int>(i) + 1;
+    const std::string row_at = where.At(line);
+    const std::vector<std::string_view> fields = SplitFields(t, scan.delimiter);
+    if (fields.size() != scan.names.size()) {
+      Fail(row_at + "expected " + std::to_string(scan.names.size()) + " columns (" +
+           JoinNames(scan.names, scan.delimiter == ' ' ? ' ' : scan.delimiter) + "), found " +
+           std::to_string(fields.size()));
+    }
+    Row row;
+    row.line = line;
+    row.index = ++index;
+    row.lambda = ParseField(DecimalPoint(fields[abscissa], scan.delimiter), unit_name, row_at);
+    if (!(row.lambda > 0)) {
+      Fail(row_at + unit_name + " = " + FormatNumber(row.lambda) + " is not positive");
+    }
+    const double r =
+        ParseField(DecimalPoint(fields[candidates.front()], scan.delimiter), r_name, row_at);
+    row.values[0] = percent ? r / 100.0 : r;
+    if (row.values[0] < 0 || row.values[0] > 1) {
+      Fail(row_at + r_name + " = " + FormatNumber(r) + " lies outside " +
+           (percent ? "0-100 %" : "0-1 (for percent, name the column 'R (%)')"));
+    }
+    rows.push_back(row);
+  }
+  const Table table = FinishRows(rows, described, where, warnings, /*either_direction=*/true);
+  const bool reversed = unit == Unit::kEv || unit == Unit::kWavenumber;
+  const std::size_t count = table.lambda.size();
+  MeasuredReflectance spectrum;
+  spectrum.source = path;
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::size_t from = reversed ? count - 1 - i : i;
+    const double lambda_nm = NmFrom(unit, table.lambda[from]);
+    if (!std::isfinite(lambda_nm) ||
+        (!spectrum.lambda_nm.empty() && !(lambda_nm > spectrum.lambda_nm.back()))) {
+      Fail(path + ": " + unit_name + " = " + FormatNumber(table.lambda[from]) +
+           " cannot be told apart from its neighbour in nm");
+    }
+    spectrum.lambda_nm.push_back(lambda_nm);
+    spectrum.reflectance.push_back(table.values[0][from]);
+  }
+  return spectrum;
 }
 
 // Any exception from the standard library becomes an Error naming the file.
@@ -1107,6 +1232,18 @@ NkSpectrum ReadRefractiveIndexYaml(const std::string& path, std::vector<std::str
 NkSpectrum ReadNkDelimited(const std::string& path, const NkColumns& columns,
                            std::vector<std::string>* warnings) {
   return ParseDelimitedGuarded(path, ReadFileText(path), columns, warnings);
+}
+
+MeasuredReflectance ReadReflectanceDelimited(const std::string& path,
+                                             std::vector<std::string>* warnings) {
+  const std::string text = ReadFileText(path);
+  try {
+    return ParseReflectance(path, text, warnings);
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    Fail(path + ": cannot read: " + e.what());
+  }
 }
 
 NkSpectrum ReadNkCsv(const std::string& path, std::vector<std::string>* warnings) {

@@ -390,9 +390,12 @@ std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings&
                       std::to_string(r.model->fit_summary().degree);
       r.model.reset();
     }
+    // It contradicts an end sample where it misses it by more than the miss threshold and
+    // by more than it errs on the samples its folds hold out: a regression's miss within
+    // its own scatter is no contradiction.
     bool misses = false;
     if (r.model) r.score.end_miss = EndMiss(*r.model, dataset, &misses);
-    misses_end.push_back(misses);
+    misses_end.push_back(misses && r.score.end_miss > r.score.mean);
     selection.scores.push_back(r.score);
     if (selection.metric.empty()) selection.metric = candidates.back().metric;
   }

@@ -341,6 +341,59 @@ class Model:
         return color(self, x, angle_deg=angle_deg, illuminant=illuminant, observer=observer,
                      sigma=sigma, exact=exact)
 
+    def match(self, lab=None, *, hex=None, xyz=None, angle_deg=0.0, illuminant="D65",
+              observer=2, target_sigma=0.0, margin=1.0, sigma=True,
+              all_minima=False) -> dict:
+        """The composition whose colour is closest to each target (color/match.h): targets
+        as CIELAB ``lab`` (shape S + (3,), e.g. (N, 3)), ``xyz`` (S + (3,), a perfect
+        reflector has Y = 1) or ``hex`` ("#rrggbb" or a sequence of them, sRGB), under
+        ``illuminant`` and ``observer``, seen at ``angle_deg``. Returns arrays of shape S:
+        "x" (atomic fraction), "x_sigma" (its one-sigma: the model's colour uncertainty and
+        ``target_sigma`` (CIEDE2000) over the rate colour changes with composition; NaN
+        when neither is known), "de00" (CIEDE2000 left), "reachable" (de00 <= 1),
+        "n_minima" (local minima within ``margin`` dE00 of the best); "lab" (S + (3,), the
+        model's colour at x); with ``all_minima``, "matches": per target (flattened) a list
+        of {"x_atomic", "x_sigma", "de00"} sorted by de00. ``sigma=False`` skips the
+        uncertainty draws (much faster for many targets). Raises Error on bad input."""
+        given = [v is not None for v in (lab, hex, xyz)]
+        if sum(given) != 1:
+            raise Error("match: give exactly one of lab, hex or xyz")
+        if hex is not None:
+            texts = np.asarray(hex, dtype=object)
+            flat = [_core._lab_from_hex(str(t), illuminant, int(observer)) for t in texts.ravel()]
+            targets = np.asarray(flat, dtype=float).reshape(texts.shape + (3,))
+        else:
+            targets = np.asarray(lab if lab is not None else xyz, dtype=float)
+            if targets.ndim == 0 or targets.shape[-1] != 3:
+                raise Error("match: targets must have shape (..., 3), not %s" % (targets.shape,))
+            if xyz is not None:
+                flat = [_core._lab_from_xyz(float(t[0]), float(t[1]), float(t[2]), illuminant,
+                                            int(observer)) for t in targets.reshape(-1, 3)]
+                targets = np.asarray(flat, dtype=float).reshape(targets.shape)
+        shape = targets.shape[:-1]
+        out = self._core._match(targets.reshape(-1, 3), float(angle_deg), illuminant,
+                                int(observer), float(target_sigma), float(margin), bool(sigma),
+                                bool(all_minima))
+        for key in ("x", "x_sigma", "de00", "reachable", "n_minima"):
+            out[key] = out[key].reshape(shape)
+        out["lab"] = out["lab"].reshape(shape + (3,))
+        return out
+
+    def tolerance(self, x, de=1.0, angles_deg=(0.0,), illuminants=("D65",),
+                  observer=2) -> dict:
+        """The composition window around each x (array or "18k"-style text) within which the
+        colour stays within ``de`` (CIEDE2000) of its own at every angle and illuminant
+        given (color/match.h). Returns arrays of x's shape: "x_low", "x_high" (atomic
+        fraction), "clipped_low", "clipped_high" (the window reaches the model's range) and
+        "de00_per_at_percent" (the fastest rate of colour change at x)."""
+        xs = _broadcast_x(self, x)
+        if isinstance(illuminants, str):
+            illuminants = [illuminants]
+        angles = [float(a) for a in np.atleast_1d(angles_deg)]
+        out = self._core._tolerance(xs.ravel(), float(de), angles, list(illuminants),
+                                    int(observer))
+        return {key: value.reshape(xs.shape) for key, value in out.items()}
+
     def save(self, path: Union[str, os.PathLike]) -> None:
         """Writes the versioned JSON model file (atomically: all or nothing)."""
         self._core.save(_path("path", path))

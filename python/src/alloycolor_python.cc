@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "alloycolor/color/colorimetry.h"
+#include "alloycolor/color/match.h"
 #include "alloycolor/color/material_color.h"
 #include "alloycolor/color/sweep.h"
 #include "alloycolor/core/dataset.h"
@@ -35,8 +36,9 @@
 #include "alloycolor/core/io.h"
 #include "alloycolor/core/json.h"
 #include "alloycolor/core/output.h"
-#include "alloycolor/core/setting.h"
+#include "alloycolor/core/parallel.h"
 #include "alloycolor/core/permittivity.h"
+#include "alloycolor/core/setting.h"
 #include "alloycolor/export/export_files.h"
 #include "alloycolor/export/spectral_export.h"
 #include "alloycolor/fit/methods.h"
@@ -206,6 +208,116 @@ py::dict SpectrumColors(const NkSpectrum& nk, const Array& angle_in, const std::
     }
   }
   return ColorDict(arrays, false);
+}
+
+// ---- from colour to composition ------------------------------------------------------------
+
+// The best match for each target colour (rows of an (N, 3) CIELAB array), with the number
+// of local minima within the margin and, with all_minima, every one of them.
+py::dict ModelMatch(const AlloyModel& model, const Array& lab_in, double angle_deg,
+                    const std::string& illuminant, int observer_deg, double target_sigma,
+                    double margin, bool sigma, bool all_minima) {
+  if (lab_in.ndim() != 2 || lab_in.shape(1) != 3) {
+    throw Error("match: the targets must be an (N, 3) array of CIELAB L*, a*, b*");
+  }
+  const py::ssize_t n = lab_in.shape(0);
+  py::array_t<double> x(n), x_sigma(n), de00(n), lab({n, py::ssize_t{3}});
+  py::array_t<bool> reachable(n);
+  py::array_t<int> minima(n);
+  std::vector<std::vector<color::Match>> every(all_minima ? n : 0);
+  const double* in = lab_in.data();
+  double *px = x.mutable_data(), *ps = x_sigma.mutable_data(), *pd = de00.mutable_data(),
+         *pl = lab.mutable_data();
+  bool* pr = reachable.mutable_data();
+  int* pm = minima.mutable_data();
+  {
+    py::gil_scoped_release release;
+    color::MatchOptions options;
+    options.angle_deg = angle_deg;
+    options.target_sigma_de00 = target_sigma;
+    options.margin = margin;
+    options.with_sigma = sigma;
+    const color::Colorimeter& colorimeter = GetColorimeter(illuminant, observer_deg);
+    // Without the one-sigma, blocks of targets over the cores, a matcher each (a matcher's
+    // sweep has scratch space, so one is not shared between threads).
+    constexpr int kBlock = 2048;
+    ParallelFor(static_cast<int>(n), kBlock, !sigma && n >= 2 * kBlock ? ThreadCount(0) : 1,
+                [&](int begin, int end) {
+      const color::ColourMatcher matcher(colorimeter, model, options);
+      for (py::ssize_t i = begin; i < end; ++i) {
+        std::vector<color::Match> found =
+            matcher.Find({in[3 * i], in[3 * i + 1], in[3 * i + 2]});
+        const color::Match& best = found.front();
+        px[i] = best.x_atomic;
+        ps[i] = best.x_sigma;
+        pd[i] = best.de00;
+        pl[3 * i] = best.lab.L;
+        pl[3 * i + 1] = best.lab.a;
+        pl[3 * i + 2] = best.lab.b;
+        pr[i] = best.de00 <= color::kReachableDeltaE00;
+        pm[i] = static_cast<int>(found.size());
+        if (all_minima) every[i] = std::move(found);
+      }
+    });
+  }
+  py::dict d;
+  d["x"] = x;
+  d["x_sigma"] = x_sigma;
+  d["de00"] = de00;
+  d["lab"] = lab;
+  d["reachable"] = reachable;
+  d["n_minima"] = minima;
+  if (all_minima) {
+    py::list lists;
+    for (const auto& found : every) {
+      py::list rows;
+      for (const color::Match& m : found) {
+        py::dict r;
+        r["x_atomic"] = m.x_atomic;
+        r["x_sigma"] = m.x_sigma;
+        r["de00"] = m.de00;
+        rows.append(r);
+      }
+      lists.append(rows);
+    }
+    d["matches"] = lists;
+  }
+  return d;
+}
+
+// The tolerance window around each composition.
+py::dict ModelTolerance(const AlloyModel& model, const Array& x_in, double de00,
+                        const std::vector<double>& angles_deg,
+                        const std::vector<std::string>& illuminants, int observer_deg) {
+  const std::vector<double> xs = ToVector(x_in);
+  const py::ssize_t n = static_cast<py::ssize_t>(xs.size());
+  py::array_t<double> low(n), high(n), speed(n);
+  py::array_t<bool> clipped_low(n), clipped_high(n);
+  {
+    py::gil_scoped_release release;
+    std::vector<color::Colorimeter> colorimeters;
+    for (const std::string& name : illuminants) {
+      colorimeters.push_back(GetColorimeter(name, observer_deg));
+    }
+    color::ToleranceOptions options;
+    options.de00 = de00;
+    options.angles_deg = angles_deg;
+    for (py::ssize_t i = 0; i < n; ++i) {
+      const color::ToleranceWindow w = color::Tolerance(colorimeters, model, xs[i], options);
+      low.mutable_data()[i] = w.x_low;
+      high.mutable_data()[i] = w.x_high;
+      speed.mutable_data()[i] = w.de00_per_x / 100.0;
+      clipped_low.mutable_data()[i] = w.clipped_low;
+      clipped_high.mutable_data()[i] = w.clipped_high;
+    }
+  }
+  py::dict d;
+  d["x_low"] = low;
+  d["x_high"] = high;
+  d["de00_per_at_percent"] = speed;
+  d["clipped_low"] = clipped_low;
+  d["clipped_high"] = clipped_high;
+  return d;
 }
 
 // ---- optical constants -------------------------------------------------------------------
@@ -385,6 +497,15 @@ PYBIND11_MODULE(_alloycolor, m) {
     return out;
   });
   m.def("illuminants", &color::IlluminantNames);
+  m.def("_lab_from_hex", [](const std::string& hex, const std::string& illuminant, int observer) {
+    const color::Lab lab = color::LabFromHex(GetColorimeter(illuminant, observer), hex);
+    return std::vector<double>{lab.L, lab.a, lab.b};
+  });
+  m.def("_lab_from_xyz", [](double X, double Y, double Z, const std::string& illuminant,
+                            int observer) {
+    const color::Lab lab = color::LabFromTargetXYZ(GetColorimeter(illuminant, observer), {X, Y, Z});
+    return std::vector<double>{lab.L, lab.a, lab.b};
+  });
 
   m.def(
       "_read_nk",
@@ -512,6 +633,8 @@ PYBIND11_MODULE(_alloycolor, m) {
            })
       .def("_optics", &ModelOptics)
       .def("_color", &ModelColors)
+      .def("_match", &ModelMatch)
+      .def("_tolerance", &ModelTolerance)
       .def("_render",
            [](const AlloyModel& a, double x, const std::string& shape, int size,
               const std::string& lighting, double roughness, const std::string& background,

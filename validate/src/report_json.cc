@@ -106,6 +106,11 @@ nlohmann::json ValidationJson(const ValidationReport& report) {
                           {"delta_e00_sigma", ByAngle(report.angles_deg, r.delta_e00_sigma)},
                           {"srgb_hex", HexByAngle(report.angles_deg, r.srgb8)},
                           {"Lab", LabByAngle(report.angles_deg, r.lab)}};
+      if (std::isfinite(r.x_recovered)) {
+        m["recovered"] = {{"x_atomic", r.x_recovered},
+                          {"x_sigma", OrNull(r.x_recovered_sigma)},
+                          {"error_at_percent", 100 * (r.x_recovered - h.x_atomic)}};
+      }
       if (!r.error.empty()) m["note"] = r.error;
       results[method] = m;
     }
@@ -137,6 +142,17 @@ nlohmann::json ValidationJson(const ValidationReport& report) {
     }
   }
   doc["sigma_honesty"] = honesty;
+  // The composition recovered from each held-out sample's measured colour.
+  nlohmann::json recovery = nlohmann::json::object();
+  for (const std::string& method : report.methods) {
+    const RecoverySummary s = Recovery(report, method);
+    if (s.count == 0) continue;
+    recovery[method] = {{"count", s.count},
+                        {"mean_abs_error_at_percent", OrNull(s.mean_abs_at_percent)},
+                        {"with_sigma", s.with_sigma},
+                        {"within_2_sigma", s.within_2}};
+  }
+  doc["composition_recovery"] = recovery;
   doc["dataset_warnings"] = report.dataset_warnings;
   return doc;
 }

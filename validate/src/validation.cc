@@ -10,6 +10,7 @@
 #include <mutex>
 #include <utility>
 
+#include "alloycolor/color/match.h"
 #include "alloycolor/color/material_color.h"
 #include "alloycolor/color/sample_error.h"
 #include "alloycolor/core/composition.h"
@@ -230,6 +231,17 @@ MethodResult Evaluate(const AlloyModel& model, const Sample& sample,
             colorimeter, model, sample.x_atomic, options.angles_deg[a], options.sigma_draws));
       }
     }
+    // Back from colour to composition: the measured colour at normal incidence matched.
+    const color::Lab measured_lab = color::LabFromXYZ(
+        color::MaterialXYZ(colorimeter, color::IndexOnGrid(colorimeter, sample.nk), 0.0),
+        colorimeter.White());
+    try {
+      const color::Match best = color::MatchColour(colorimeter, model, measured_lab).front();
+      r.x_recovered = best.x_atomic;
+      r.x_recovered_sigma = best.x_sigma;
+    } catch (const Error&) {
+      // no composition recovered: the model gives no finite colour over its range
+    }
   }
   return r;
 }
@@ -430,6 +442,24 @@ ValidationReport ComputeValidation(const Dataset& dataset,
 }
 
 // ---------------------------------------------------------------------------------------
+
+RecoverySummary Recovery(const ValidationReport& report, const std::string& method) {
+  RecoverySummary s;
+  double sum = 0;
+  for (const HoldoutResult& h : report.holdouts) {
+    const auto it = h.results.find(method);
+    if (it == h.results.end() || !std::isfinite(it->second.x_recovered)) continue;
+    const double error = std::abs(it->second.x_recovered - h.x_atomic);
+    sum += 100 * error;
+    ++s.count;
+    if (std::isfinite(it->second.x_recovered_sigma)) {
+      ++s.with_sigma;
+      s.within_2 += error <= 2 * it->second.x_recovered_sigma;
+    }
+  }
+  s.mean_abs_at_percent = s.count > 0 ? sum / s.count : std::numeric_limits<double>::quiet_NaN();
+  return s;
+}
 
 SigmaCoverage Coverage(const ValidationReport& report, const std::string& method, int angle) {
   SigmaCoverage s;

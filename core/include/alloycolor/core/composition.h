@@ -57,6 +57,11 @@ double WeightFromAtomicFraction(double x_a, const AlloySystem& system);
 // text when it cannot be read or lies outside [0, 1].
 double ParseComposition(const std::string& text, const AlloySystem& system);
 
+// Whether one of the two elements is gold, and the karat (24 x the weight fraction of
+// gold) at atomic fraction x_a: the inverse of ParseComposition's "18k"; NaN otherwise.
+bool IsGoldAlloy(const AlloySystem& system);
+double KaratFromAtomicFraction(double x_a, const AlloySystem& system);
+
 // Free-electron density in m^-3 at atomic fraction x_a.
 double FreeElectronDensityM3(double x_a, const AlloySystem& system);
 

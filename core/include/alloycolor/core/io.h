@@ -71,6 +71,20 @@ NkSpectrum ReadNkDelimited(const std::string& path, const NkColumns& columns = {
 // read `lambda_nm,n,k` only).
 NkSpectrum ReadNkCsv(const std::string& path, std::vector<std::string>* warnings = nullptr);
 
+// A measured reflectance spectrum, ascending in nm, R as a fraction in [0, 1].
+struct MeasuredReflectance {
+  std::string source;
+  std::vector<double> lambda_nm;
+  std::vector<double> reflectance;
+};
+
+// A reflectance spectrum from delimited text read as flexibly as n,k files (delimiters,
+// decimal commas, comments, title lines, the abscissa's units, either order): the value
+// column is the one named R, refl, reflectance or reflectivity (or the only other one),
+// in percent where its name says so ('R (%)', 'R_percent'). Errors name the file and line.
+MeasuredReflectance ReadReflectanceDelimited(const std::string& path,
+                                             std::vector<std::string>* warnings = nullptr);
+
 // n from a refractiveindex.info file holding `tabulated n` alone, k from one holding
 // `tabulated k` alone, joined on the n grid where both are defined.
 NkSpectrum ReadNkPair(const std::string& n_path, const std::string& k_path,

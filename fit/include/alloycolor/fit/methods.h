@@ -74,7 +74,8 @@ struct FitSettings {
 // of their fold-by-fold differences (from two folds), wins: a rival displaces the default
 // regression only on evidence the folds can give. The folds cannot hold out the two end
 // samples: among the methods the rule accepts, one that misses an end sample by more than
-// kInSampleMissDe00 gives way to one that does not. The
+// ΔE00 1 (reflectance RMS 0.01) and by more than its mean fold error gives way to one that
+// does not. The
 // physical model is not scored where its folds cannot fit its composition degree (three
 // compositions: degree 2, its folds' two samples only a line). With three compositions
 // the one fold predicts the middle from the ends, where every interpolation is a straight

@@ -30,6 +30,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <map>
 #include <memory>
 #include <string>
@@ -65,6 +66,11 @@ struct MethodResult {
   // Spectral errors on lambda_nm (see above).
   double reflectance_rms = 0, reflectance_max = 0, n_max_abs = 0, k_max_abs = 0;
   std::vector<double> lambda_nm, n, k, reflectance;  // predicted, for plots
+  // The composition recovered from the sample's measured colour at normal incidence
+  // (color::MatchColour: the best match within the model's range) and its one-sigma
+  // (NaN without colour or uncertainty).
+  double x_recovered = std::numeric_limits<double>::quiet_NaN();
+  double x_recovered_sigma = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct HoldoutResult {
@@ -159,6 +165,14 @@ struct SigmaCoverage {
   double median_ratio = 0;  // NaN when count is 0
 };
 SigmaCoverage Coverage(const ValidationReport& report, const std::string& method, int angle);
+
+// The compositions recovered from held-out colours, for one method, pooled: mean |error|
+// in at% and the number whose true composition lies within two sigma.
+struct RecoverySummary {
+  int count = 0, with_sigma = 0, within_2 = 0;
+  double mean_abs_at_percent = 0;  // NaN when count is 0
+};
+RecoverySummary Recovery(const ValidationReport& report, const std::string& method);
 
 }  // namespace alloycolor::validate
 

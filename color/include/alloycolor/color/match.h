@@ -1,0 +1,140 @@
+// From colour to composition: the compositions of an alloy whose colour (or reflectance)
+// is closest to a target, and the composition window within which the colour stays
+// within a given CIEDE2000 of an alloy's own.
+//
+// Matching. Colour need not be monotone in composition, so the target's difference
+//   d(x) = DeltaE00(target, Lab(x))   (or, for a spectrum, RMS_lambda [R(x) - R_target])
+// is scanned at `scan_points` evenly spaced compositions over the model's range (colour
+// read from a ColorSweep table, sweep.h), every local minimum of the scan (ends included)
+// is refined by Brent's method (on d^2, smooth where d has a corner) on the exact model
+// (ColorSweep::ExactXYZ) inside its two neighbouring scan intervals, and the minima within `margin` of the best are
+// returned, best first.
+//
+// Error bar. The colour speed v(x) = |dLab/dx| in CIEDE2000 units per unit of x is
+//   v(x) = DeltaE00(Lab(x - h), Lab(x + h)) / 2h,  h = 1e-5
+// (one-sided at the ends of the range). A composition matched to a colour that is known
+// to sigma_model (the model's colour one-sigma at x, DeltaE00Sigma in material_color.h)
+// and sigma_target (the target measurement's, given) is known to
+//   sigma_x = sqrt(sigma_model^2 + sigma_target^2) / v(x),
+// first-order propagation of a colour error along the model's colour curve.
+//
+// Tolerance. Around x0, the window [x_low, x_high] is the largest interval containing x0
+// in which max over (illuminant, angle) of DeltaE00(Lab(x0), Lab(x)) <= de00: walked out
+// from x0 in steps of kToleranceStep and bisected to 1e-9 at the first step that leaves it;
+// clipped at the model's range (and flagged). Units: x as atomic fraction of element a.
+#ifndef ALLOYCOLOR_COLOR_MATCH_H_
+#define ALLOYCOLOR_COLOR_MATCH_H_
+
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "alloycolor/color/colorimetry.h"
+#include "alloycolor/color/sweep.h"
+#include "alloycolor/model/alloy_model.h"
+
+namespace alloycolor::color {
+
+// A target farther than this from every composition is "not reachable".
+inline constexpr double kReachableDeltaE00 = 1.0;
+inline constexpr int kMatchScanPoints = 1001;
+// The step of the colour-speed difference and of the tolerance walk, in atomic fraction.
+inline constexpr double kColourSpeedStep = 1e-5;
+inline constexpr double kToleranceStep = 5e-4;
+
+struct MatchOptions {
+  double angle_deg = 0.0;
+  int scan_points = kMatchScanPoints;  // at least 3
+  // Other local minima whose distance lies within this of the best are returned too
+  // (DeltaE00 for a colour, reflectance RMS for a spectrum).
+  double margin = 1.0;
+  double target_sigma_de00 = 0.0;  // one-sigma of the target's own measurement
+  bool with_sigma = true;          // false: skip the model's uncertainty draws (faster)
+};
+
+struct Match {
+  static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  double x_atomic = kNaN;
+  double de00 = kNaN;             // CIEDE2000 left (NaN: a spectrum without colour)
+  double reflectance_rms = kNaN;  // spectrum matches only
+  double x_sigma = kNaN;          // one sigma of x_atomic (NaN: no uncertainty known)
+  double model_sigma_de00 = kNaN; // the model's colour one-sigma at x_atomic (NaN: none)
+  double de00_per_x = kNaN;       // colour speed v(x) at x_atomic
+  Lab lab{};                      // the model's colour at x_atomic
+  bool at_range_end = false;      // the minimum lies at x_min or x_max
+};
+
+// The colour of the model at any composition and its distance to targets, prepared once
+// (sweep table, Lab at the scan points) so that many targets cost little each.
+class ColourMatcher {
+ public:
+  // Keeps references to colorimeter and model, which must outlive it. Throws Error when
+  // the model does not cover the visible, the angle lies outside 0-90 degrees or the
+  // options are out of range.
+  ColourMatcher(const Colorimeter& colorimeter, const AlloyModel& model,
+                const MatchOptions& options);
+  ~ColourMatcher();
+
+  // The minima of DeltaE00(target, Lab(x)) within options.margin of the best, best
+  // first (never empty). Throws Error for a target that is not finite.
+  std::vector<Match> Find(const Lab& target) const;
+  // The same for a measured reflectance spectrum at the matcher's angle, by
+  // reflectance RMS over the spectrum's wavelengths inside the model's range.
+  // Throws Error naming `source` when the spectrum and the model share under two
+  // wavelengths or a value is not finite.
+  std::vector<Match> FindReflectance(const std::vector<double>& lambda_nm,
+                                     const std::vector<double>& reflectance,
+                                     const std::string& source) const;
+
+  Lab LabAt(double x_atomic) const;
+  // v(x), CIEDE2000 per unit of atomic fraction.
+  double ColourSpeed(double x_atomic) const;
+
+ private:
+  void Finish(Match* match) const;
+
+  const Colorimeter& colorimeter_;
+  const AlloyModel& model_;
+  MatchOptions options_;
+  std::unique_ptr<ColorSweep> sweep_;
+  std::vector<double> scan_x_;
+  std::vector<Lab> scan_lab_;
+};
+
+// One target, one call.
+std::vector<Match> MatchColour(const Colorimeter& colorimeter, const AlloyModel& model,
+                               const Lab& target, const MatchOptions& options = {});
+
+// Targets given other ways, as CIELAB relative to the colorimeter's white:
+// XYZ on the toolkit's scale (a perfect reflector has Y = 1);
+Lab LabFromTargetXYZ(const Colorimeter& colorimeter, const XYZ& xyz);
+// "#rrggbb" (or "rrggbb") as 8-bit sRGB, decoded and taken to XYZ with the IEC 61966-2-1
+// matrix without chromatic adaptation, the inverse of how the toolkit writes sRGB.
+// Throws Error naming the text when it is not six hex digits.
+Lab LabFromHex(const Colorimeter& colorimeter, const std::string& hex);
+
+struct ToleranceOptions {
+  double de00 = 1.0;
+  std::vector<double> angles_deg = {0.0};
+};
+
+struct ToleranceWindow {
+  double x_atomic = 0.0;
+  double x_low = 0.0, x_high = 0.0;
+  bool clipped_low = false, clipped_high = false;  // the window reaches the model's range
+  // The largest colour speed over the conditions at x_atomic, per unit of atomic fraction.
+  double de00_per_x = 0.0;
+  // Which illuminant and angle bound each side (empty when clipped).
+  std::string limit_low, limit_high;
+};
+
+// The window around x_atomic for every colorimeter (illuminant, observer) and angle.
+// Throws Error when x_atomic lies outside the model's range, de00 is not positive, no
+// colorimeter or angle is given, or an angle lies outside 0-90 degrees.
+ToleranceWindow Tolerance(const std::vector<Colorimeter>& colorimeters, const AlloyModel& model,
+                          double x_atomic, const ToleranceOptions& options);
+
+}  // namespace alloycolor::color
+
+#endif  // ALLOYCOLOR_COLOR_MATCH_H_

@@ -26,15 +26,6 @@ struct ChartOptions {
   bool quiet = false;
 };
 
-double CompositionArg(const std::string& text, const std::string& option,
-                      const AlloySystem& system) {
-  try {
-    return ParseComposition(text, system);
-  } catch (const Error& e) {
-    throw Error(option + ": " + e.what());
-  }
-}
-
 void Run(const ChartOptions& o) {
   if (o.out.empty()) throw Error("--out: give the chart file (.svg or .png)");
   const std::string ext = std::filesystem::path(o.out).extension().string();
@@ -52,10 +43,11 @@ void Run(const ChartOptions& o) {
   }
   const color::Colorimeter colorimeter = LoadColorimeter(o.illuminant, o.observer);
   const auto model = o.source.Load(o.quiet);
-  const double from =
-      o.from_text.empty() ? model->x_min() : CompositionArg(o.from_text, "--from", model->system());
+  const double from = o.from_text.empty()
+                          ? model->x_min()
+                          : ParseCompositionArg(o.from_text, model->system(), "--from");
   const double to =
-      o.to_text.empty() ? model->x_max() : CompositionArg(o.to_text, "--to", model->system());
+      o.to_text.empty() ? model->x_max() : ParseCompositionArg(o.to_text, model->system(), "--to");
   CheckComposition(*model, from, o.source.extrapolate);
   CheckComposition(*model, to, o.source.extrapolate);
   const bool weight =

@@ -1,5 +1,6 @@
 // alloycolor color: the colour of a polished metal from measured n, k (--nk) or of an
 // alloy at any composition from a data set or a fitted model.
+#include <algorithm>
 #include <cstdio>
 #include <cmath>
 #include <iostream>
@@ -33,11 +34,23 @@ void Append(std::string* text, const char* format, Args... args) {
   *text += line;
 }
 
-void PrintHeader(std::string* text, const std::string& what, const ColorOptions& o) {
+// `label_width`: the width of the first column, the composition as given.
+void PrintHeader(std::string* text, const std::string& what, const ColorOptions& o,
+                 int label_width = 10) {
   Append(text, "%s; illuminant %s, %d-degree observer, incidence %g degrees\n",
          MessageLine(what, 200).c_str(), o.illuminant.c_str(), o.observer, o.angle_deg);
-  Append(text, "%-10s %8s %8s %8s %8s %8s %8s  %-8s %-15s %s\n", "x", "X", "Y", "Z", "L*", "a*",
-         "b*", "sRGB", "sRGB8", "paper RGB");
+  Append(text, "%-*s %8s %8s %8s %8s %8s %8s  %-8s %-15s %s\n", label_width, "x", "X", "Y", "Z",
+         "L*", "a*", "b*", "sRGB", "sRGB8", "paper RGB");
+}
+
+// A composition as the user wrote it, with its atomic fraction beside it unless it was
+// written as one: "18k (x = 0.6216)", "0.5".
+std::string CompositionLabel(const std::string& given, double x) {
+  char fraction[32];
+  std::snprintf(fraction, sizeof fraction, "%.4g", x);
+  double value = 0;
+  if (ParseFiniteDouble(given, &value)) return given;
+  return MessageLine(given, 40) + " (x = " + fraction + ")";
 }
 
 // Throws Error naming the composition when any printed figure is not finite.
@@ -53,10 +66,10 @@ void RequireFinite(const color::ColorResult& c, double sigma, const std::string&
 }
 
 void PrintRow(std::string* text, const std::string& label, const color::ColorResult& c,
-              double sigma) {
+              double sigma, int label_width = 10) {
   char rgb8[32];
   std::snprintf(rgb8, sizeof rgb8, "%d,%d,%d", c.srgb8[0], c.srgb8[1], c.srgb8[2]);
-  Append(text, "%-10s %8.4f %8.4f %8.4f %8.3f %8.3f %8.3f  %-8s %-15s %.3f,%.3f,%.3f",
+  Append(text, "%-*s %8.4f %8.4f %8.4f %8.3f %8.3f %8.3f  %-8s %-15s %.3f,%.3f,%.3f", label_width,
          label.c_str(), c.xyz.X, c.xyz.Y, c.xyz.Z, c.lab.L, c.lab.a, c.lab.b,
          color::HexColor(c.srgb8).c_str(), rgb8, c.paper_rgb.r, c.paper_rgb.g, c.paper_rgb.b);
   if (sigma >= 0) Append(text, "  (1-sigma dE00 %.3g)", sigma);
@@ -97,10 +110,20 @@ void Run(const ColorOptions& o) {
   }
   const auto model = o.material.LoadModel(o.quiet);
   const std::vector<double> xs = o.material.Compositions(*model, false);
+  const std::vector<std::string> given = o.material.CompositionTexts();
+  std::vector<std::string> labels;
+  int label_width = 10;
+  for (std::size_t i = 0; i < xs.size(); ++i) {
+    labels.push_back(CompositionLabel(given.at(i), xs[i]));
+    label_width = std::max(label_width, static_cast<int>(labels.back().size()));
+  }
   nlohmann::json results = nlohmann::json::array();
   std::string text;
-  if (!o.json) PrintHeader(&text, model->system().Name() + ", " + model->method() + " model", o);
-  for (double x : xs) {
+  if (!o.json) {
+    PrintHeader(&text, model->system().Name() + ", " + model->method() + " model", o, label_width);
+  }
+  for (std::size_t i = 0; i < xs.size(); ++i) {
+    const double x = xs[i];
     const color::ColorResult c = color::ColorFromXYZ(
         colorimeter, color::MaterialXYZ(colorimeter,
                                          color::IndexOnGrid(colorimeter, *model, x),
@@ -109,14 +132,13 @@ void Run(const ColorOptions& o) {
     RequireFinite(c, sigma, model->source() + ": composition x = " + FormatNumber(x));
     if (o.json) {
       nlohmann::json r = {{"x", x},
+                          {"x_given", given.at(i)},
                           {"x_weight", WeightFromAtomicFraction(x, model->system())}};
       r.update(color::ColorJson(c));
       if (sigma >= 0) r["delta_e00_sigma"] = sigma;
       results.push_back(r);
     } else {
-      char label[32];
-      std::snprintf(label, sizeof label, "%.4g", x);
-      PrintRow(&text, label, c, sigma);
+      PrintRow(&text, labels[i], c, sigma, label_width);
     }
   }
   if (o.json) {

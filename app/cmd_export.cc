@@ -2,12 +2,14 @@
 // as the spectrum files and material definitions pbrt-v4 and Mitsuba 3 read for conductors,
 // and as RGB conductors, F0 / F82 tint, Gulbrandsen's r / g, MaterialX and glTF materials.
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <string>
 #include <vector>
 
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/json.h"
+#include "alloycolor/core/text.h"
 #include "alloycolor/export/export_files.h"
 #include "alloycolor/export/material_files.h"
 #include "common.h"
@@ -40,6 +42,13 @@ std::string Loss(const exports::AngularError& e) {
 void Run(const ExportOptions& o) {
   exports::CheckExportFormat(o.settings.format, "--format");
   if (o.out.empty()) throw Error("--out: give a file name prefix");
+  if (o.out.back() == '/' || std::filesystem::is_directory(o.out)) {
+    std::string folder = o.out;
+    while (folder.size() > 1 && folder.back() == '/') folder.pop_back();
+    throw Error("--out " + Quote(o.out, 100) +
+                " names a folder: --out is a file name prefix, e.g. " +
+                (folder == "/" ? "" : folder) + "/au18k");
+  }
   exports::CheckExportRoughness(o.settings.roughness, "--roughness");
   CheckOutputFolder(o.out, "--out");
   exports::CheckExportSceneDir(o.settings.scene_dir, "--scene-dir");

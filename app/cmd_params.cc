@@ -80,10 +80,11 @@ void Run(const ParamsOptions& o) {
   }
   if (o.steps < 1 || o.steps > 100000) throw Error("--steps: need 1..100000");
   const auto model = o.source.Load(o.quiet);
-  const double from =
-      o.from_text.empty() ? model->x_min() : ParseCompositions(o.from_text, model->system()).at(0);
-  const double to =
-      o.to_text.empty() ? model->x_max() : ParseCompositions(o.to_text, model->system()).at(0);
+  const double from = o.from_text.empty()
+                          ? model->x_min()
+                          : ParseCompositions(o.from_text, model->system(), "--from").at(0);
+  const double to = o.to_text.empty() ? model->x_max()
+                                      : ParseCompositions(o.to_text, model->system(), "--to").at(0);
   CheckComposition(*model, from, o.source.extrapolate);
   CheckComposition(*model, to, o.source.extrapolate);
   std::vector<double> xs;

@@ -30,7 +30,7 @@ void Run(const PredictOptions& o, CLI::App* cmd) {
   }
   const auto model = o.source.Load(o.quiet);
   if (o.x_text.empty()) throw Error("--x: give one composition, e.g. --x 0.75");
-  const std::vector<double> xs = ParseCompositions(o.x_text, model->system());
+  const std::vector<double> xs = ParseCompositions(o.x_text, model->system(), "--x");
   if (xs.size() != 1) throw Error("--x: predict takes one composition");
   const double x = xs[0];
   CheckComposition(*model, x, o.source.extrapolate);

@@ -10,6 +10,7 @@
 
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/io.h"
+#include "alloycolor/core/text.h"
 #include "alloycolor/render/image.h"
 #include "alloycolor/color/material_color.h"
 #include "alloycolor/render/renderer.h"
@@ -116,6 +117,16 @@ render::CheckedTable TableOrRefusal(const render::DirectReflection& direct,
   }
 }
 
+// render writes PNG only: a name with another extension (x.jpg) is refused, not given
+// PNG bytes under a name that says otherwise.
+void CheckPngName(const std::string& out) {
+  const std::string extension = Lower(std::filesystem::path(out).extension().string());
+  if (!extension.empty() && extension != ".png") {
+    throw Error("--out " + Quote(out, 100) +
+                ": render writes PNG only; give a name ending in .png");
+  }
+}
+
 double Milliseconds(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
       .count();
@@ -124,10 +135,13 @@ double Milliseconds(std::chrono::steady_clock::time_point start) {
 void Run(const RenderCommandOptions& o) {
   const render::RenderOptions options = CheckedOptions(o);
   CheckOutputFolder(o.out, "--out");
+  // An existing file may be an input, which the guard below names first.
+  if (!std::filesystem::exists(o.out)) CheckPngName(o.out);
   const color::Colorimeter colorimeter = LoadColorimeter(o.illuminant, o.observer);
   std::string description;
   const std::vector<Material> materials = LoadMaterials(o, colorimeter, &description);
   CheckOutputPath(o.out);  // before the work: not an input, a symlink or a device
+  CheckPngName(o.out);
   const long long pixels = static_cast<long long>(materials.size()) * options.size * options.size;
   if (pixels > render::kMaxImagePixels) {
     throw Error("--size: " + std::to_string(materials.size()) + " tiles of " +

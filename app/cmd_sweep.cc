@@ -172,10 +172,11 @@ void Run(const SweepOptions& o) {
     throw Error("--from/--to: give one composition each");
   }
   const auto model = o.source.Load(o.quiet);
-  const double from =
-      o.from_text.empty() ? model->x_min() : ParseComposition(o.from_text, model->system());
+  const double from = o.from_text.empty()
+                          ? model->x_min()
+                          : ParseCompositionArg(o.from_text, model->system(), "--from");
   const double to =
-      o.to_text.empty() ? model->x_max() : ParseComposition(o.to_text, model->system());
+      o.to_text.empty() ? model->x_max() : ParseCompositionArg(o.to_text, model->system(), "--to");
   CheckComposition(*model, from, o.source.extrapolate);
   CheckComposition(*model, to, o.source.extrapolate);
 

@@ -52,7 +52,7 @@ void Run(const ToleranceCommandOptions& o) {
     colorimeters.push_back(LoadColorimeter(name, o.observer));
   }
   const auto model = o.source.Load(o.quiet);
-  const double x = ParseComposition(o.x_text, model->system());
+  const double x = ParseCompositionArg(o.x_text, model->system(), "--x");
   CheckComposition(*model, x, false);
   color::ToleranceOptions options;
   options.de00 = o.de00;

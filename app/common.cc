@@ -36,25 +36,91 @@ std::string DataRoot() {
   return ALLOYCOLOR_SOURCE_DATA_DIR;
 }
 
+std::vector<std::string> BundledDatasets() {
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (fs::directory_iterator it(DataRoot(), ec), end; !ec && it != end; it.increment(ec)) {
+    std::error_code file_ec;
+    if (fs::is_regular_file(it->path() / "dataset.json", file_ec)) {
+      names.push_back(it->path().filename().string());
+    }
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
 namespace {
 
-Dataset LoadDatasetFrom(const std::string& arg) {
+std::string Joined(const std::vector<std::string>& names) {
+  std::string text;
+  for (const std::string& name : names) text += (text.empty() ? "" : ", ") + name;
+  return text;
+}
+
+// Why `arg`, which exists, is not a data set, when the file is something else the program
+// reads ("" when it is not).
+std::string NotADataset(const std::string& arg, bool takes_nk) {
+  switch (GuessInputKind(arg)) {
+    case InputKind::kModelFile:
+      return arg + ": this is a model file: use --model";
+    case InputKind::kNkFile:
+      return arg + ": this is one sample's n,k, not a data set (a folder or a dataset.json " +
+             "manifest listing n,k files at several compositions; see docs/data.md)" +
+             (takes_nk ? "; for this sample alone use --nk" : "");
+    default:
+      return "";
+  }
+}
+
+Dataset LoadDatasetFrom(const std::string& arg, bool takes_nk) {
   std::error_code ec;
   if (!fs::exists(arg, ec)) {
     const fs::path bundled = fs::path(DataRoot()) / arg;
     if (!arg.empty() && fs::path(arg).is_relative() && fs::exists(bundled, ec)) {
       return LoadDataset(bundled.string());
     }
+    const std::vector<std::string> names = BundledDatasets();
+    const std::string nearest = NearestName(arg, names);
+    throw Error("no data set " + Quote(arg, 100) + ": not a folder, a manifest or a bundled set (" +
+                Joined(names) + ")" + (nearest.empty() ? "" : "; did you mean " + nearest + "?"));
   }
-  return LoadDataset(arg);
+  try {
+    return LoadDataset(arg);
+  } catch (const Error&) {
+    const std::string why = NotADataset(arg, takes_nk);
+    if (why.empty()) throw;
+    throw Error(why);
+  }
 }
 
 }  // namespace
 
-Dataset LoadDatasetArg(const std::string& arg) {
-  Dataset dataset = LoadDatasetFrom(arg);
+Dataset LoadDatasetArg(const std::string& arg, bool takes_nk) {
+  Dataset dataset = LoadDatasetFrom(arg, takes_nk);
   NoteInputs(dataset);
   return dataset;
+}
+
+std::unique_ptr<AlloyModel> LoadModelArg(const std::string& path, bool takes_nk) {
+  try {
+    auto model = ReadModelFile(path);
+    NoteInput(path);
+    return model;
+  } catch (const Error&) {
+    switch (GuessInputKind(path)) {
+      case InputKind::kDataset: {
+        std::error_code ec;
+        throw Error(path + ": this is a data set" +
+                    (fs::is_directory(path, ec) ? "" : " manifest") + ": use --data");
+      }
+      case InputKind::kNkFile:
+        throw Error(path + ": this is one sample's n,k, not a model file (which 'alloycolor " +
+                    "fit --out' writes)" + (takes_nk ? ": use --nk" : ""));
+      default:
+        break;
+    }
+    throw;
+  }
 }
 
 color::Colorimeter LoadColorimeter(const std::string& illuminant, int observer_deg) {
@@ -82,19 +148,33 @@ std::vector<std::string> SplitComma(const std::string& text) {
 
 }  // namespace
 
-std::vector<double> ParseCompositions(const std::string& text, const AlloySystem& system) {
+std::vector<double> ParseCompositions(const std::string& text, const AlloySystem& system,
+                                      const std::string& option) {
   std::vector<double> xs;
   const std::vector<std::string> parts = SplitComma(text);
   if (parts.size() > kMaxListValues) {
-    throw Error("compositions: " + std::to_string(parts.size()) + " given, at most " +
+    throw Error(option + ": " + std::to_string(parts.size()) + " compositions given, at most " +
                 std::to_string(kMaxListValues) + " (use 'alloycolor sweep' for more)");
   }
   for (const std::string& part : parts) {
-    if (part.find('\0') != std::string::npos) throw Error("compositions: a NUL byte in the list");
-    xs.push_back(ParseComposition(part, system));
+    if (part.find('\0') != std::string::npos) throw Error(option + ": a NUL byte in the list");
+    try {
+      xs.push_back(ParseComposition(part, system));
+    } catch (const Error& e) {
+      throw Error(option + ": " + e.what());
+    }
   }
-  if (xs.empty()) throw Error("no composition given");
+  if (xs.empty()) throw Error(option + ": no composition given");
   return xs;
+}
+
+double ParseCompositionArg(const std::string& text, const AlloySystem& system,
+                           const std::string& option) {
+  try {
+    return ParseComposition(text, system);
+  } catch (const Error& e) {
+    throw Error(option + ": " + e.what());
+  }
 }
 
 std::vector<const Sample*> SamplesAt(const std::string& text, const Dataset& dataset,
@@ -203,13 +283,9 @@ std::unique_ptr<AlloyModel> ModelSource::Load(bool quiet) const {
   if (!model_path.empty() && !data_dir.empty()) {
     throw Error("give either --model or --data, not both");
   }
-  if (!model_path.empty()) {
-    auto model = ReadModelFile(model_path);
-    NoteInput(model_path);
-    return model;
-  }
+  if (!model_path.empty()) return LoadModelArg(model_path, takes_nk);
   if (!data_dir.empty()) {
-    const Dataset dataset = LoadDatasetArg(data_dir);
+    const Dataset dataset = LoadDatasetArg(data_dir, takes_nk);
     if (!quiet) {
       for (const std::string& w : dataset.warnings) Warn(w);
     }
@@ -241,6 +317,7 @@ void MaterialSource::AddOptions(CLI::App* cmd, const std::string& x_help,
                   "columns to read, as N,K by header name or 1-based column number, e.g. "
                   "n6,k6 or 2,3");
   source.AddOptions(cmd, true);
+  source.takes_nk = true;
   cmd->add_option(x_names, x_text, x_help);
 }
 
@@ -268,10 +345,16 @@ std::unique_ptr<AlloyModel> MaterialSource::LoadModel(bool quiet) const {
 }
 
 std::vector<double> MaterialSource::Compositions(const AlloyModel& model, bool single) const {
-  const std::vector<double> xs = ParseCompositions(x_text, model.system());
+  const std::vector<double> xs = ParseCompositions(x_text, model.system(), "--x");
   if (single && xs.size() != 1) throw Error("--x: give one composition, not " + x_text);
   for (double x : xs) CheckComposition(model, x, source.extrapolate);
   return xs;
+}
+
+std::vector<std::string> MaterialSource::CompositionTexts() const {
+  std::vector<std::string> texts;
+  for (const std::string& part : SplitComma(x_text)) texts.emplace_back(Trim(part));
+  return texts;
 }
 
 void AddColorimetryOptions(CLI::App* cmd, std::string* illuminant, int* observer) {

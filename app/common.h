@@ -25,15 +25,29 @@ namespace alloycolor::app {
 // next to the program, else the source tree's data/.
 std::string DataRoot();
 
+// The bundled data sets' names ("Au-Ag", ...): DataRoot()'s folders holding dataset.json.
+std::vector<std::string> BundledDatasets();
+
 // A data set given on the command line: a path, or the name of a bundled set ("Au-Ag");
-// its files are noted as inputs (output_guard.h).
-Dataset LoadDatasetArg(const std::string& arg);
+// its files are noted as inputs (output_guard.h). An unknown name lists the bundled sets
+// and the nearest; a model file or an n,k file is named as such (`takes_nk`: the command
+// also takes --nk, which the message then offers).
+Dataset LoadDatasetArg(const std::string& arg, bool takes_nk = false);
+
+// A model file given on the command line, noted as an input; a data set or an n,k file
+// given instead is named as such (and --nk offered where the command takes it).
+std::unique_ptr<AlloyModel> LoadModelArg(const std::string& path, bool takes_nk = false);
 
 // Colorimeter for --illuminant and --observer; the colour tables are noted as inputs.
 color::Colorimeter LoadColorimeter(const std::string& illuminant, int observer_deg);
 
-// Comma-separated compositions ("0.5,75wt%,18k") as atomic fractions of element a.
-std::vector<double> ParseCompositions(const std::string& text, const AlloySystem& system);
+// Comma-separated compositions ("0.5,75wt%,18k") as atomic fractions of element a; errors
+// name `option`.
+std::vector<double> ParseCompositions(const std::string& text, const AlloySystem& system,
+                                      const std::string& option);
+// One composition, naming the option on error.
+double ParseCompositionArg(const std::string& text, const AlloySystem& system,
+                           const std::string& option);
 // The samples of `dataset` at the comma-separated compositions of `text`, each once, in
 // the order given: a plain number matches a sample's atomic fraction or, failing that, the
 // number the manifest gives it (a weight fraction in a weight-fraction manifest); 75at%,
@@ -67,6 +81,7 @@ struct ModelSource {
   std::string data_dir;
   std::string method = "auto";
   bool extrapolate = false;
+  bool takes_nk = false;  // the command takes --nk too (MaterialSource), for messages
   // with_extrapolate: offer --extrapolate (not for commands that keep to the model's range).
   void AddOptions(CLI::App* cmd, bool with_data, bool with_extrapolate = true);
   // Loads or builds the model; throws Error when neither or both are given.
@@ -91,6 +106,8 @@ struct MaterialSource {
   std::unique_ptr<AlloyModel> LoadModel(bool quiet) const;
   // The --x compositions, each checked against the model's range; `single`: exactly one.
   std::vector<double> Compositions(const AlloyModel& model, bool single) const;
+  // The --x compositions as the user wrote them ("18k"), trimmed, in the same order.
+  std::vector<std::string> CompositionTexts() const;
 };
 
 // --illuminant and --observer, the same on every command that computes colour.

@@ -9,6 +9,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <new>
@@ -40,6 +41,45 @@ bool StdoutReaderGone() {
   if (!S_ISFIFO(info.st_mode) && !S_ISSOCK(info.st_mode)) return false;
   pollfd poll_fd{STDOUT_FILENO, POLLOUT, 0};
   return poll(&poll_fd, 1, 0) > 0 && (poll_fd.revents & POLLERR) != 0;
+}
+
+// The one line for a command line CLI11 refused, when it can name what was meant: an
+// option the command does not take, with the command's nearest option ("--angel": did
+// you mean --angle?), or a command that does not exist, with the nearest command; ""
+// otherwise (CLI11's own message is printed then).
+std::string GuidingLine(const CLI::App& app, int argc, char** argv) {
+  const std::vector<CLI::App*> parsed = app.get_subcommands();
+  if (parsed.empty()) {
+    if (argc < 2 || argv[1][0] == '-') return "";
+    std::vector<std::string> commands;
+    for (const CLI::App* cmd : app.get_subcommands([](const CLI::App*) { return true; })) {
+      commands.push_back(cmd->get_name());
+    }
+    if (std::find(commands.begin(), commands.end(), argv[1]) != commands.end()) return "";
+    const std::string nearest = alloycolor::NearestName(argv[1], commands);
+    std::string list;
+    for (const std::string& name : commands) list += (list.empty() ? "" : ", ") + name;
+    return "unknown command " + alloycolor::Quote(argv[1]) +
+           (nearest.empty() ? "" : "; did you mean " + nearest + "?") + " (commands: " + list + ")";
+  }
+  const CLI::App* cmd = parsed.front();
+  std::vector<std::string> names;  // long option names without their dashes
+  for (const CLI::Option* option : cmd->get_options()) {
+    for (const std::string& name : option->get_lnames()) names.push_back(name);
+  }
+  const int start = static_cast<int>(std::find(argv + 1, argv + argc, cmd->get_name()) - argv);
+  for (int i = start + 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--") break;
+    if (arg.size() < 3 || arg.compare(0, 2, "--") != 0) continue;
+    const std::string name = arg.substr(2, arg.find('=') - 2);
+    if (std::find(names.begin(), names.end(), name) != names.end()) continue;
+    const std::string nearest = alloycolor::NearestName(name, names);
+    return cmd->get_name() + ": unknown option " + alloycolor::Quote("--" + name) +
+           (nearest.empty() ? "" : "; did you mean --" + nearest + "?") + " (see 'alloycolor " +
+           cmd->get_name() + " --help')";
+  }
+  return "";
 }
 
 }  // namespace
@@ -85,6 +125,11 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
+    // An unknown option is named first: it is often why a required one seems missing.
+    if (const std::string line = GuidingLine(app, argc, argv); !line.empty()) {
+      PrintError(line);
+      return 2;
+    }
     std::string what = e.what();
     for (char& c : what) {
       if (c == '\n') c = ' ';

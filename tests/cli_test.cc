@@ -277,6 +277,117 @@ TEST_F(BadInput, ModelFilesAndRefit) {
   EXPECT_EQ(r.out.substr(0, 14), "lambda_nm,n,k\n");
 }
 
+// A program that guides: what was wrong and what would be right, on one line, status 2.
+std::vector<std::string> Args(std::vector<std::string> head, const std::vector<std::string>& tail) {
+  head.insert(head.end(), tail.begin(), tail.end());
+  return head;
+}
+
+TEST_F(BadInput, AnUnknownDataSetNameListsTheBundledOnes) {
+  ExpectCleanError({"color", "--data", "AuAg", "--x", "0.5"},
+                   {"no data set 'AuAg': not a folder, a manifest or a bundled set (Au-Ag, Cu-Zn, "
+                    "Nb-Sn); did you mean Au-Ag?"});
+  ExpectCleanError({"fit", "--data", "nb-sn", "--out", dir_ + "/m.json"},
+                   {"'nb-sn'", "did you mean Nb-Sn?"});
+  // Far from every name: the list without a guess.
+  ExpectCleanError({"color", "--data", "Pt-Ir", "--x", "0.5"}, {"(Au-Ag, Cu-Zn, Nb-Sn)"});
+  EXPECT_EQ(RunProgram({"color", "--data", "Pt-Ir", "--x", "0.5"}).err.find("did you mean"),
+            std::string::npos);
+}
+
+TEST_F(BadInput, AMalformedCompositionSaysWhatIsAccepted) {
+  const std::vector<std::string> color = {"color", "--data", "Au-Ag", "--method", "paper"};
+  ExpectCleanError(Args(color, {"--x", "75wt"}),
+                   {"--x: composition '75wt': did you mean 75wt%?", "0.75, 75at%, 75wt%", "18k"});
+  ExpectCleanError(Args(color, {"--x", "0.5,75%wt"}), {"'75%wt'", "did you mean 75wt%?"});
+  ExpectCleanError(Args(color, {"--x", "18ct"}), {"did you mean 18k?"});
+  ExpectCleanError(Args(color, {"--x", "75"}), {"'75'", "did you mean 75at% or 75wt%?"});
+  ExpectCleanError(Args(color, {"--x", "abc"}), {"--x: composition 'abc'", "accepted: "});
+  EXPECT_EQ(RunProgram(Args(color, {"--x", "abc"})).err.find("did you mean"), std::string::npos);
+  ExpectCleanError({"predict", "--data", "Au-Ag", "--method", "paper", "--x", "50at"},
+                   {"--x: composition '50at': did you mean 50at%?"});
+  ExpectCleanError({"sweep", "--data", "Au-Ag", "--method", "paper", "--from", "75wt"},
+                   {"--from: composition '75wt': did you mean 75wt%?"});
+}
+
+TEST_F(BadInput, ADataSetGivenAsAModelAndTheReverseAreNamed) {
+  const std::string model = dir_ + "/model.json";
+  ASSERT_EQ(
+      RunProgram({"fit", "--data", "Au-Ag", "--method", "paper", "--out", model, "--quiet"}).status,
+      0);
+  const std::string manifest = DataDir() + "/Au-Ag/dataset.json";
+  const std::string yml = DataDir() + "/Au-Ag/Rioux-Au50Ag50.yml";
+  ExpectCleanError({"color", "--model", manifest, "--x", "0.5"},
+                   {manifest + ": this is a data set manifest: use --data"});
+  ExpectCleanError({"predict", "--model", DataDir() + "/Au-Ag", "--x", "0.5"},
+                   {"this is a data set: use --data"});
+  ExpectCleanError({"color", "--data", model, "--x", "0.5"},
+                   {model + ": this is a model file: use --model"});
+  ExpectCleanError({"sweep", "--data", model}, {"this is a model file: use --model"});
+  // One sample's n, k: what a data set is, and --nk where the command takes it.
+  ExpectCleanError(
+      {"fit", "--data", yml, "--out", dir_ + "/m.json"},
+      {yml + ": this is one sample's n,k, not a data set", "dataset.json", "several compositions"});
+  EXPECT_EQ(RunProgram({"fit", "--data", yml, "--out", dir_ + "/m.json"}).err.find("--nk"),
+            std::string::npos);
+  ExpectCleanError(
+      {"color", "--data", File("gold.csv", "lambda_nm,n,k\n400,1,2\n500,1,2\n"), "--x", "0.5"},
+      {"gold.csv: this is one sample's n,k", "use --nk"});
+  ExpectCleanError({"render", "--model", yml, "--x", "0.5", "--out", dir_ + "/r.png"},
+                   {"one sample's n,k, not a model file", "use --nk"});
+  EXPECT_FALSE(std::filesystem::exists(dir_ + "/m.json"));
+}
+
+TEST_F(BadInput, AnUnknownOptionOrCommandSuggestsTheNearest) {
+  const std::vector<std::string> color = {"color", "--data", "Au-Ag", "--method",
+                                          "paper", "--x",    "0.5"};
+  ExpectCleanError(Args(color, {"--angel", "45"}),
+                   {"color: unknown option '--angel'; did you mean --angle?"});
+  ExpectCleanError(Args(color, {"--illuminnt=D50"}), {"'--illuminnt'; did you mean --illuminant?"});
+  // Named before the required option it hides.
+  ExpectCleanError(
+      {"render", "--nk", DataDir() + "/pure/Au-Johnson.yml", "--outt", dir_ + "/r.png"},
+      {"render: unknown option '--outt'; did you mean --out?"});
+  ExpectCleanError({"colour", "--data", "Au-Ag"},
+                   {"unknown command 'colour'; did you mean color?", "fit, predict"});
+  ExpectCleanError(Args(color, {"--zzzzzz"}), {"unknown option '--zzzzzz'"});
+  EXPECT_EQ(RunProgram(Args(color, {"--zzzzzz"})).err.find("did you mean"), std::string::npos);
+}
+
+TEST(Cli, CompositionsAreEchoedAsWritten) {
+  const RunResult r = RunProgram(
+      {"color", "--data", "Au-Ag", "--method", "paper", "--x", "18k, 0.5,75at%", "--quiet"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("\n18k (x = 0.6216) "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\n0.5 "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\n75at% (x = 0.75) "), std::string::npos) << r.out;
+  const nlohmann::json one = ColorJson({"--data", "Au-Ag", "--method", "paper", "--x", "18k"});
+  EXPECT_EQ(one["x_given"], "18k");
+  EXPECT_NEAR(one["x"].get<double>(), 0.6216, 1e-4);
+  const nlohmann::json two =
+      ColorJson({"--data", "Au-Ag", "--method", "paper", "--x", "75wt%,0.25"});
+  EXPECT_EQ(two["results"][0]["x_given"], "75wt%");
+  EXPECT_EQ(two["results"][1]["x_given"], "0.25");
+  EXPECT_EQ(two["results"][1]["x"].get<double>(), 0.25);
+}
+
+TEST_F(BadInput, OutputNamesTheCommandDoesNotWriteAreRefused) {
+  const std::string gold = DataDir() + "/pure/Au-Johnson.yml";
+  ExpectCleanError({"render", "--nk", gold, "--size", "8", "--out", dir_ + "/x.jpg"},
+                   {"x.jpg", "render writes PNG only"});
+  EXPECT_FALSE(std::filesystem::exists(dir_ + "/x.jpg"));
+  ASSERT_EQ(RunProgram({"render", "--nk", gold, "--size", "8", "--out", dir_ + "/x.PNG", "--quiet"})
+                .status,
+            0);
+  std::filesystem::remove(dir_ + "/x.PNG");
+  // export's --out is a prefix: a folder would get hidden files (.eta.spd, .pbrt) inside.
+  ExpectCleanError({"export", "--nk", gold, "--out", dir_ + "/"},
+                   {"--out is a file name prefix, e.g. " + dir_ + "/au18k"});
+  ExpectCleanError({"export", "--nk", gold, "--out", dir_}, {"names a folder"});
+  ExpectCleanError({"export", "--nk", gold, "--out", dir_ + "/new/"}, {"names a folder"});
+  EXPECT_TRUE(std::filesystem::is_empty(dir_));
+}
+
 TEST(Cli, PredictWritesTheModelsIndex) {
   const std::string dir = MakeTempDir();
   ASSERT_EQ(RunProgram({"fit", "--data", "Au-Ag", "--method", "paper", "--out",

@@ -117,6 +117,27 @@ TEST(CompositionTest, BadTextIsNamed) {
   EXPECT_THAT(ErrorOf("", au_ag), HasSubstr("empty composition"));
 }
 
+// A composition written close to an accepted form gets the accepted spelling; any other
+// gets the forms accepted.
+TEST(CompositionTest, CloseMissesGetTheAcceptedSpelling) {
+  const AlloySystem au_ag = System("Au", "Ag");
+  const std::pair<const char*, const char*> cases[] = {
+      {"75wt", "did you mean 75wt%?"},       {"75 wt", "did you mean 75wt%?"},
+      {"75%wt", "did you mean 75wt%?"},      {"75wt.%", "did you mean 75wt%?"},
+      {"50at", "did you mean 50at%?"},       {"50mol%", "did you mean 50at%?"},
+      {"18ct", "did you mean 18k?"},         {"18 karat", "did you mean 18k?"},
+      {"75", "did you mean 75at% or 75wt%?"}};
+  for (const auto& [text, needle] : cases) {
+    EXPECT_THAT(ErrorOf(text, au_ag), HasSubstr(needle)) << text;
+  }
+  const std::string abc = ErrorOf("abc", au_ag);
+  EXPECT_THAT(abc, HasSubstr("accepted: an atomic fraction like 0.75, 75at%, 75wt%"));
+  EXPECT_EQ(abc.find("did you mean"), std::string::npos) << abc;
+  EXPECT_EQ(ErrorOf("200", au_ag).find("did you mean"), std::string::npos);
+  // No option is named: the program adds its own.
+  EXPECT_EQ(abc.find("--"), std::string::npos) << abc;
+}
+
 TEST(FreeElectronDensityTest, GoldMatchesAshcroftMermin) {
   // Ashcroft & Mermin, Table 1.1: gold, Z = 1, N_e = 5.90e22 cm^-3.
   const AlloySystem au_ag = System("Au", "Ag");

@@ -17,6 +17,7 @@
 #include "alloycolor/core/composition.h"
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/io.h"
+#include "alloycolor/core/text.h"
 #include "test_util.h"
 
 namespace alloycolor {
@@ -100,6 +101,37 @@ TEST(LoadDatasetTest, NbSnWeightFractionsBecomeAtomic) {
   EXPECT_NEAR(sn55.x_atomic, (0.55 / 118.710) / (0.55 / 118.710 + 0.45 / 92.90637), 1e-14);
   EXPECT_EQ(dataset.samples.front().x_atomic, 0.0);
   EXPECT_EQ(dataset.samples.back().x_atomic, 1.0);
+}
+
+// What a path given in the wrong place holds, for the message that names it.
+TEST(GuessInputKindTest, TellsDataSetsModelsAndNkFilesApart) {
+  const std::string dir = MakeTempDir();
+  EXPECT_EQ(GuessInputKind(DataDir() + "/Au-Ag"), InputKind::kDataset);
+  EXPECT_EQ(GuessInputKind(DataDir() + "/Cu-Zn/dataset-werner-zn.json"), InputKind::kDataset);
+  EXPECT_EQ(GuessInputKind(DataDir() + "/Au-Ag/Rioux-Au50Ag50.yml"), InputKind::kNkFile);
+  WriteText(dir + "/lab.CSV", "lambda_nm,n,k\n400,1,2\n");
+  EXPECT_EQ(GuessInputKind(dir + "/lab.CSV"), InputKind::kNkFile);
+  WriteText(dir + "/m.json", R"({"format": "alloycolor-model", "version": 1})");
+  EXPECT_EQ(GuessInputKind(dir + "/m.json"), InputKind::kModelFile);
+  WriteText(dir + "/broken.json", "{\"samples\": [");
+  EXPECT_EQ(GuessInputKind(dir + "/broken.json"), InputKind::kUnknown);
+  WriteText(dir + "/list.json", "[1, 2]");
+  EXPECT_EQ(GuessInputKind(dir + "/list.json"), InputKind::kUnknown);
+  EXPECT_EQ(GuessInputKind(dir), InputKind::kUnknown);  // a folder without dataset.json
+  EXPECT_EQ(GuessInputKind(dir + "/missing.json"), InputKind::kUnknown);
+}
+
+TEST(NearestNameTest, OneEditInThreeLettersAtMost) {
+  const std::vector<std::string> sets = {"Au-Ag", "Cu-Zn", "Nb-Sn"};
+  EXPECT_EQ(NearestName("AuAg", sets), "Au-Ag");
+  EXPECT_EQ(NearestName("nb-sn", sets), "Nb-Sn");  // case is ignored
+  EXPECT_EQ(NearestName("Pt-Ir", sets), "");
+  EXPECT_EQ(NearestName("", sets), "");
+  const std::vector<std::string> options = {"angle", "illuminant", "observer", "out"};
+  EXPECT_EQ(NearestName("angel", options), "angle");  // two letters swapped: one edit
+  EXPECT_EQ(NearestName("illuminnt", options), "illuminant");
+  EXPECT_EQ(NearestName("outt", options), "out");
+  EXPECT_EQ(NearestName("bogus", options), "");
 }
 
 TEST(WithoutSamplesTest, DropsTheNamedCompositions) {

@@ -108,6 +108,43 @@ void CheckFraction(double fraction, const char* what) {
   }
 }
 
+// The forms ParseComposition reads, for its messages.
+constexpr const char* kAcceptedForms =
+    "accepted: an atomic fraction like 0.75, 75at%, 75wt%, or a karat like 18k for gold alloys";
+
+// The accepted spelling of a composition written close to one of the accepted forms
+// ("75wt" -> "75wt%", "75%wt" -> "75wt%", "18ct" -> "18k"), or "" when there is none.
+// `lower` is the trimmed text in lower case.
+std::string CloseForm(std::string_view lower) {
+  const std::size_t end = lower.find_first_not_of("0123456789.+-");
+  if (end == 0 || end == std::string_view::npos) return "";
+  double value = 0;
+  if (!ParseFiniteDouble(lower.substr(0, end), &value)) return "";
+  std::string suffix;
+  for (const char c : lower.substr(end)) {
+    if (c != ' ' && c != '\t' && c != '.' && c != '-') suffix += c;
+  }
+  struct Spelling {
+    const char* written;
+    const char* accepted;
+  };
+  constexpr Spelling kSpellings[] = {
+      {"wt", "wt%"},  {"%wt", "wt%"}, {"w%", "wt%"},  {"wt%", "wt%"},  {"at", "at%"},
+      {"%at", "at%"}, {"a%", "at%"},  {"at%", "at%"}, {"mol%", "at%"}, {"ct", "k"},
+      {"karat", "k"}, {"carat", "k"}, {"kt", "k"},    {"k", "k"}};
+  for (const Spelling& s : kSpellings) {
+    if (suffix == s.written) return std::string(lower.substr(0, end)) + s.accepted;
+  }
+  return "";
+}
+
+// Refuses text that is not a composition, naming the forms accepted and the closest.
+[[noreturn]] void FailUnreadable(const std::string& quoted, std::string_view lower) {
+  const std::string close = CloseForm(lower);
+  Fail(quoted + (close.empty() ? ": cannot read it" : ": did you mean " + close + "?") + " (" +
+       kAcceptedForms + ")");
+}
+
 }  // namespace
 
 const Element& FindElement(const std::string& symbol) {
@@ -154,7 +191,7 @@ double ParseComposition(const std::string& text, const AlloySystem& system) {
   double value = 0;
   const auto number = [&](std::size_t suffix_length) {
     if (!ParseFiniteDouble(Trim(view.substr(0, view.size() - suffix_length)), &value)) {
-      Fail(quoted + ": cannot read the number");
+      FailUnreadable(quoted, view);
     }
   };
   if (EndsWith(view, "at%")) {
@@ -168,6 +205,8 @@ double ParseComposition(const std::string& text, const AlloySystem& system) {
     return AtomicFromWeightFraction(value / 100, system);
   }
   if (EndsWith(view, "%")) {
+    const std::string close = CloseForm(view);
+    if (!close.empty()) FailUnreadable(quoted, view);
     Fail(quoted + " is ambiguous: write at% (atomic) or wt% (weight)");
   }
   if (EndsWith(view, "kt") || EndsWith(view, "k")) {
@@ -183,6 +222,11 @@ double ParseComposition(const std::string& text, const AlloySystem& system) {
   }
   if (view.empty()) Fail("empty composition");
   number(0);
+  if (value > 1 && value <= 100) {
+    const std::string written(view);
+    Fail(quoted + " lies outside [0, 1] (an atomic fraction); did you mean " + written + "at% or " +
+         written + "wt%?");
+  }
   if (!(value >= 0 && value <= 1)) {
     Fail(quoted + " lies outside [0, 1] (an atomic fraction; write at% or wt% for percent)");
   }

@@ -315,6 +315,27 @@ Dataset LoadDataset(const std::string& dir_or_manifest) {
   }
 }
 
+InputKind GuessInputKind(const std::string& path) {
+  try {
+    std::error_code error;
+    if (fs::is_directory(path, error)) {
+      return fs::is_regular_file(fs::path(path) / "dataset.json", error) ? InputKind::kDataset
+                                                                         : InputKind::kUnknown;
+    }
+    const std::string extension = Lower(fs::path(path).extension().string());
+    for (const char* nk : {".yml", ".yaml", ".csv", ".txt", ".dat", ".tsv"}) {
+      if (extension == nk) return InputKind::kNkFile;
+    }
+    const Json root = Json::parse(ReadFileText(path), nullptr, /*allow_exceptions=*/false);
+    if (!root.is_object()) return InputKind::kUnknown;
+    if (root.contains("format")) return InputKind::kModelFile;
+    if (root.contains("samples")) return InputKind::kDataset;
+  } catch (const std::exception&) {
+    // Unreadable: nothing to tell.
+  }
+  return InputKind::kUnknown;
+}
+
 const Sample* FindSample(const Dataset& dataset, double x) {
   for (const auto given : {false, true}) {
     for (const Sample& s : dataset.samples) {

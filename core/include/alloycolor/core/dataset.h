@@ -52,6 +52,14 @@ struct Dataset {
 // Accepts a folder holding dataset.json or the manifest file itself.
 Dataset LoadDataset(const std::string& dir_or_manifest);
 
+// What a path given as a data set or a model holds, told from its name and contents (for
+// a message that says what was given instead): a data set (a folder holding dataset.json,
+// or a JSON object with "samples" and no "format"), a model file (a JSON object with
+// "format"), one sample's optical constants (a .yml, .yaml, .csv, .txt, .dat or .tsv
+// file), or none of these. Never throws.
+enum class InputKind { kUnknown, kDataset, kModelFile, kNkFile };
+InputKind GuessInputKind(const std::string& path);
+
 // The sample at composition x: the one whose atomic fraction is x (within 1e-9) or,
 // failing that, whose number in the manifest is (a weight fraction in a weight-fraction
 // manifest); the first of its replicates; null when there is none.

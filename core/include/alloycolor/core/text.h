@@ -39,6 +39,12 @@ std::string Lower(std::string_view text);
 
 bool EndsWith(std::string_view text, std::string_view suffix);
 
+// The name of `names` closest to `word` (a misspelt name, an option without its dashes),
+// for a "did you mean" in a message: ASCII case ignored, distance counted in edits (a
+// letter inserted, deleted, replaced, or two neighbours swapped); "" when the closest
+// needs more than one edit per three letters of `word` (at least one allowed).
+std::string NearestName(std::string_view word, const std::vector<std::string>& names);
+
 // Splits text at '\n' (a final empty piece after a trailing '\n' is kept).
 std::vector<std::string_view> Lines(std::string_view text);
 

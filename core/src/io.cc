@@ -20,6 +20,8 @@
 #include "alloycolor/core/text.h"
 #include "io_internal.h"
 
+// What the n,k readers share: the table of rows and its checks, reading a file, the choice
+// of reader by extension and content, and the CSV the program writes.
 namespace alloycolor {
 namespace {
 

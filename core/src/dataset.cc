@@ -116,6 +116,203 @@ bool SameFile(const fs::path& a, const fs::path& b) {
   return fs::weakly_canonical(a, error) == fs::weakly_canonical(b, error) && !error;
 }
 
+// The manifest's "system" (with its element overrides) and the data set's name.
+void ReadSystem(const std::string& manifest, const Json& root, Dataset* dataset) {
+  if (!root.contains("system") || !root.at("system").is_object()) {
+    Fail(manifest + ": system: missing or not an object like {\"a\": \"Au\", \"b\": \"Ag\"}");
+  }
+  const Json& system = root.at("system");
+  dataset->system.a = ElementField(manifest, system, "a");
+  dataset->system.b = ElementField(manifest, system, "b");
+  if (std::string(dataset->system.a.symbol) == dataset->system.b.symbol) {
+    Fail(manifest + ": system: a and b are both '" + dataset->system.a.symbol + "'");
+  }
+  if (root.contains("elements"))
+    ApplyElementOverrides(manifest, root.at("elements"), &dataset->system);
+
+  for (const char* key : {"name", "source", "notes"}) {
+    if (root.contains(key) && !root.at(key).is_string()) {
+      Fail(manifest + ": " + key + ": not a string");
+    }
+  }
+  dataset->name =
+      root.contains("name") ? root.at("name").get<std::string>() : dataset->system.Name();
+}
+
+// The manifest's "composition": atomic or weight fraction.
+std::string ReadCompositionKind(const std::string& manifest, const Json& root) {
+  if (!root.contains("composition")) {
+    Fail(manifest + ": composition: missing; write \"" + kAtomic + "\" or \"" + kWeight + "\"");
+  }
+  const Json& composition = root.at("composition");
+  if (!composition.is_string() ||
+      (composition.get<std::string>() != kAtomic && composition.get<std::string>() != kWeight)) {
+    Fail(manifest + ": composition: " + Quote60(composition.dump()) + " is neither \"" + kAtomic +
+         "\" nor \"" + kWeight + "\"");
+  }
+  return composition.get<std::string>();
+}
+
+// A sample's measurement files ("file", or "n_file" and "k_file"), resolved against folder.
+void ReadSampleFiles(const std::string& manifest, const std::string& where, const Json& entry,
+                     const fs::path& folder, Sample* sample, std::string* file) {
+  const auto file_field = [&](const char* key) {
+    if (!entry.contains(key)) return std::string();
+    if (!entry.at(key).is_string() || entry.at(key).get<std::string>().empty()) {
+      Fail(manifest + ": " + where + "." + key + ": not a file name");
+    }
+    if (entry.at(key).get<std::string>().find('\0') != std::string::npos) {
+      Fail(manifest + ": " + where + "." + key + ": the file name holds a NUL byte");
+    }
+    return entry.at(key).get<std::string>();
+  };
+  *file = file_field("file");
+  const std::string n_file = file_field("n_file");
+  const std::string k_file = file_field("k_file");
+  if (file->empty() && n_file.empty() && k_file.empty()) {
+    Fail(manifest + ": " + where + ".file: missing or not a file name");
+  }
+  if (!file->empty() == (!n_file.empty() || !k_file.empty()) || n_file.empty() != k_file.empty()) {
+    Fail(manifest + ": " + where + ": give either \"file\" or both \"n_file\" and \"k_file\"");
+  }
+  const auto resolve = [&](const std::string& name) {
+    const fs::path given(name);
+    std::string path = (given.is_absolute() ? given : folder / given).lexically_normal().string();
+    return path.empty() ? name : path;
+  };
+  if (file->empty()) {
+    sample->file = n_file + " + " + k_file;
+    sample->path = resolve(n_file);
+    sample->k_path = resolve(k_file);
+  } else {
+    sample->file = *file;
+    sample->path = resolve(*file);
+  }
+}
+
+// A sample's "columns": the n and k columns of its one delimited file.
+void ReadSampleColumns(const std::string& manifest, const std::string& where, const Json& columns,
+                       const std::string& file, Sample* sample) {
+  const auto column = [&](const Json& value) {
+    if (value.is_string() && !value.get<std::string>().empty()) return value.get<std::string>();
+    if (value.is_number_unsigned() && value.get<unsigned long long>() >= 1 &&
+        value.get<unsigned long long>() < 1000000) {
+      return std::to_string(value.get<unsigned long long>());
+    }
+    Fail(manifest + ": " + where + ".columns: " + Quote60(value.dump()) +
+         " is neither a header name nor a 1-based column number");
+  };
+  if (!columns.is_array() || columns.size() != 2) {
+    Fail(manifest + ": " + where +
+         ".columns: not a list of two columns like [\"n6\", \"k6\"] or [2, 3]");
+  }
+  if (file.empty()) {
+    Fail(manifest + ": " + where + ".columns: applies to \"file\", not to n_file/k_file");
+  }
+  sample->columns.n = column(columns.at(0));
+  sample->columns.k = column(columns.at(1));
+  sample->file = file + " (columns " + sample->columns.n + "," + sample->columns.k + ")";
+}
+
+// Entry i of the manifest's "samples": its files, columns and composition (not yet its data).
+Sample ReadSampleEntry(const std::string& manifest, const fs::path& manifest_path, std::size_t i,
+                       const Json& entry, const Dataset& dataset,
+                       std::vector<std::string>* warnings) {
+  const std::string where = "samples[" + std::to_string(i) + "]";
+  if (!entry.is_object()) Fail(manifest + ": " + where + ": not an object");
+  WarnUnknownKeys(manifest, where + ": ", entry, {"x", "file", "n_file", "k_file", "columns"},
+                  warnings);
+  Sample sample;
+  std::string file;
+  ReadSampleFiles(manifest, where, entry, manifest_path.parent_path(), &sample, &file);
+  if (entry.contains("columns")) {
+    ReadSampleColumns(manifest, where, entry.at("columns"), file, &sample);
+  }
+  const std::string named = manifest + ": " + where + " (" + Quote60(sample.file) + ")";
+  if (!entry.contains("x") || !entry.at("x").is_number()) {
+    Fail(named + ": x: missing or not a number");
+  }
+  sample.x_given = entry.at("x").get<double>();
+  if (!(sample.x_given >= 0 && sample.x_given <= 1)) {
+    Fail(named + ": x = " + FormatNumber(sample.x_given) + " lies outside [0, 1]");
+  }
+  sample.x_atomic = dataset.composition == kWeight
+                        ? AtomicFromWeightFraction(sample.x_given, dataset.system)
+                        : sample.x_given;
+  for (const std::string* path : {&sample.path, &sample.k_path}) {
+    if (!path->empty() && SameFile(*path, manifest_path)) {
+      Fail(named + ": the sample file is the manifest itself");
+    }
+  }
+  return sample;
+}
+
+// Refuses two samples that read the same file and columns, by any path.
+void CheckDistinctFiles(const std::string& manifest, const std::vector<Sample>& samples) {
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j) {
+      const Sample& s = samples[j];
+      const Sample& t = samples[i];
+      if (s.columns.n == t.columns.n && s.columns.k == t.columns.k && SameFile(s.path, t.path) &&
+          (s.k_path.empty() ? t.k_path.empty()
+                            : !t.k_path.empty() && SameFile(s.k_path, t.k_path))) {
+        Fail(manifest + ": samples[" + std::to_string(j) + "] and samples[" + std::to_string(i) +
+             "] both use " + Quote60(t.file) + " (at x = " + FormatNumber(s.x_given) + " and " +
+             FormatNumber(t.x_given) + "); one file is one composition");
+      }
+    }
+  }
+}
+
+// Sorts the samples by composition and refuses compositions almost but not exactly equal.
+void SortByComposition(const std::string& manifest, std::vector<Sample>* samples) {
+  // Replicates (distinct files at one composition) stay in the manifest's order, adjacent.
+  std::stable_sort(samples->begin(), samples->end(),
+                   [](const Sample& s, const Sample& t) { return s.x_atomic < t.x_atomic; });
+  for (std::size_t i = 1; i < samples->size(); ++i) {
+    const Sample& s = (*samples)[i - 1];
+    const Sample& t = (*samples)[i];
+    if (t.x_atomic != s.x_atomic && t.x_atomic - s.x_atomic <= kDistinctComposition) {
+      Fail(manifest + ": samples " + Quote60(s.file) + " and " + Quote60(t.file) +
+           " have almost the same composition, x = " + FormatNumber(s.x_given) + " and " +
+           FormatNumber(t.x_given) +
+           " (closer than 1e-6); replicates of one composition give the same x");
+    }
+  }
+}
+
+// Reads every sample's n, k and checksum, gathering the readers' warnings.
+void ReadSampleData(std::vector<Sample>* samples, std::vector<std::string>* dataset_warnings) {
+  for (Sample& sample : *samples) {
+    std::vector<std::string> warnings;
+    if (sample.k_path.empty()) {
+      sample.nk = ReadNkFile(sample.path, sample.columns, &warnings);
+      sample.checksum = Fnv1a64Hex(ReadFileText(sample.path));
+    } else {
+      sample.nk = ReadNkPair(sample.path, sample.k_path, &warnings);
+      sample.checksum = Fnv1a64Hex(ReadFileText(sample.path) + ReadFileText(sample.k_path));
+    }
+    // The readers' warnings already begin with the file (and line).
+    for (std::string& warning : warnings) dataset_warnings->push_back(std::move(warning));
+  }
+}
+
+// Refuses one measurement copied under two names (or columns) as two compositions.
+void CheckDistinctMeasurements(const std::string& manifest, const std::vector<Sample>& samples) {
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j) {
+      const Sample& s = samples[j];
+      const Sample& t = samples[i];
+      if (s.nk.lambda_nm == t.nk.lambda_nm && s.nk.n == t.nk.n && s.nk.k == t.nk.k) {
+        Fail(manifest + ": samples " + Quote60(s.file) + " and " + Quote60(t.file) +
+             " hold the same n, k at every wavelength (at x = " + FormatNumber(s.x_given) +
+             " and " + FormatNumber(t.x_given) +
+             "); one measurement is one composition, and one sample");
+      }
+    }
+  }
+}
+
 Dataset Load(const std::string& dir_or_manifest) {
   std::error_code error;
   const bool is_folder = fs::is_directory(dir_or_manifest, error);
@@ -130,176 +327,23 @@ Dataset Load(const std::string& dir_or_manifest) {
   WarnUnknownKeys(manifest, "", root,
                   {"name", "system", "composition", "samples", "source", "notes", "elements"},
                   &dataset.warnings);
-
-  if (!root.contains("system") || !root.at("system").is_object()) {
-    Fail(manifest + ": system: missing or not an object like {\"a\": \"Au\", \"b\": \"Ag\"}");
-  }
-  const Json& system = root.at("system");
-  dataset.system.a = ElementField(manifest, system, "a");
-  dataset.system.b = ElementField(manifest, system, "b");
-  if (std::string(dataset.system.a.symbol) == dataset.system.b.symbol) {
-    Fail(manifest + ": system: a and b are both '" + dataset.system.a.symbol + "'");
-  }
-  if (root.contains("elements"))
-    ApplyElementOverrides(manifest, root.at("elements"), &dataset.system);
-
-  for (const char* key : {"name", "source", "notes"}) {
-    if (root.contains(key) && !root.at(key).is_string()) {
-      Fail(manifest + ": " + key + ": not a string");
-    }
-  }
-  dataset.name = root.contains("name") ? root.at("name").get<std::string>() : dataset.system.Name();
-
-  if (!root.contains("composition")) {
-    Fail(manifest + ": composition: missing; write \"" + kAtomic + "\" or \"" + kWeight + "\"");
-  }
-  const Json& composition = root.at("composition");
-  if (!composition.is_string() ||
-      (composition.get<std::string>() != kAtomic && composition.get<std::string>() != kWeight)) {
-    Fail(manifest + ": composition: " + Quote60(composition.dump()) + " is neither \"" + kAtomic +
-         "\" nor \"" + kWeight + "\"");
-  }
-  dataset.composition = composition.get<std::string>();
-  const bool by_weight = dataset.composition == kWeight;
+  ReadSystem(manifest, root, &dataset);
+  dataset.composition = ReadCompositionKind(manifest, root);
 
   if (!root.contains("samples") || !root.at("samples").is_array() || root.at("samples").empty()) {
     Fail(manifest + ": samples: missing or not a non-empty list");
   }
-  const fs::path folder = manifest_path.parent_path();
   const Json& samples = root.at("samples");
   for (std::size_t i = 0; i < samples.size(); ++i) {
-    const std::string where = "samples[" + std::to_string(i) + "]";
-    const Json& entry = samples.at(i);
-    if (!entry.is_object()) Fail(manifest + ": " + where + ": not an object");
-    WarnUnknownKeys(manifest, where + ": ", entry, {"x", "file", "n_file", "k_file", "columns"},
-                    &dataset.warnings);
-    Sample sample;
-    const auto file_field = [&](const char* key) {
-      if (!entry.contains(key)) return std::string();
-      if (!entry.at(key).is_string() || entry.at(key).get<std::string>().empty()) {
-        Fail(manifest + ": " + where + "." + key + ": not a file name");
-      }
-      if (entry.at(key).get<std::string>().find('\0') != std::string::npos) {
-        Fail(manifest + ": " + where + "." + key + ": the file name holds a NUL byte");
-      }
-      return entry.at(key).get<std::string>();
-    };
-    const std::string file = file_field("file");
-    const std::string n_file = file_field("n_file");
-    const std::string k_file = file_field("k_file");
-    if (file.empty() && n_file.empty() && k_file.empty()) {
-      Fail(manifest + ": " + where + ".file: missing or not a file name");
-    }
-    if (!file.empty() == (!n_file.empty() || !k_file.empty()) || n_file.empty() != k_file.empty()) {
-      Fail(manifest + ": " + where + ": give either \"file\" or both \"n_file\" and \"k_file\"");
-    }
-    const auto resolve = [&](const std::string& name) {
-      const fs::path given(name);
-      std::string path = (given.is_absolute() ? given : folder / given).lexically_normal().string();
-      return path.empty() ? name : path;
-    };
-    if (file.empty()) {
-      sample.file = n_file + " + " + k_file;
-      sample.path = resolve(n_file);
-      sample.k_path = resolve(k_file);
-    } else {
-      sample.file = file;
-      sample.path = resolve(file);
-    }
-    if (entry.contains("columns")) {
-      const Json& columns = entry.at("columns");
-      const auto column = [&](const Json& value) {
-        if (value.is_string() && !value.get<std::string>().empty()) return value.get<std::string>();
-        if (value.is_number_unsigned() && value.get<unsigned long long>() >= 1 &&
-            value.get<unsigned long long>() < 1000000) {
-          return std::to_string(value.get<unsigned long long>());
-        }
-        Fail(manifest + ": " + where + ".columns: " + Quote60(value.dump()) +
-             " is neither a header name nor a 1-based column number");
-      };
-      if (!columns.is_array() || columns.size() != 2) {
-        Fail(manifest + ": " + where +
-             ".columns: not a list of two columns like [\"n6\", \"k6\"] or [2, 3]");
-      }
-      if (file.empty()) {
-        Fail(manifest + ": " + where + ".columns: applies to \"file\", not to n_file/k_file");
-      }
-      sample.columns.n = column(columns.at(0));
-      sample.columns.k = column(columns.at(1));
-      sample.file = file + " (columns " + sample.columns.n + "," + sample.columns.k + ")";
-    }
-    const std::string named = manifest + ": " + where + " (" + Quote60(sample.file) + ")";
-    if (!entry.contains("x") || !entry.at("x").is_number()) {
-      Fail(named + ": x: missing or not a number");
-    }
-    sample.x_given = entry.at("x").get<double>();
-    if (!(sample.x_given >= 0 && sample.x_given <= 1)) {
-      Fail(named + ": x = " + FormatNumber(sample.x_given) + " lies outside [0, 1]");
-    }
-    sample.x_atomic =
-        by_weight ? AtomicFromWeightFraction(sample.x_given, dataset.system) : sample.x_given;
-    for (const std::string* path : {&sample.path, &sample.k_path}) {
-      if (!path->empty() && SameFile(*path, manifest_path)) {
-        Fail(named + ": the sample file is the manifest itself");
-      }
-    }
-    dataset.samples.push_back(std::move(sample));
+    dataset.samples.push_back(
+        ReadSampleEntry(manifest, manifest_path, i, samples.at(i), dataset, &dataset.warnings));
   }
-
   // One measurement cannot be two compositions (the same file and columns, by any path).
-  for (std::size_t i = 0; i < dataset.samples.size(); ++i) {
-    for (std::size_t j = 0; j < i; ++j) {
-      const Sample& s = dataset.samples[j];
-      const Sample& t = dataset.samples[i];
-      if (s.columns.n == t.columns.n && s.columns.k == t.columns.k &&
-          SameFile(s.path, t.path) && (s.k_path.empty() ? t.k_path.empty()
-                                       : !t.k_path.empty() && SameFile(s.k_path, t.k_path))) {
-        Fail(manifest + ": samples[" + std::to_string(j) + "] and samples[" + std::to_string(i) +
-             "] both use " + Quote60(t.file) + " (at x = " + FormatNumber(s.x_given) + " and " +
-             FormatNumber(t.x_given) + "); one file is one composition");
-      }
-    }
-  }
-
-  // Replicates (distinct files at one composition) stay in the manifest's order, adjacent.
-  std::stable_sort(dataset.samples.begin(), dataset.samples.end(),
-                   [](const Sample& s, const Sample& t) { return s.x_atomic < t.x_atomic; });
-  for (std::size_t i = 1; i < dataset.samples.size(); ++i) {
-    const Sample& s = dataset.samples[i - 1];
-    const Sample& t = dataset.samples[i];
-    if (t.x_atomic != s.x_atomic && t.x_atomic - s.x_atomic <= kDistinctComposition) {
-      Fail(manifest + ": samples " + Quote60(s.file) + " and " + Quote60(t.file) +
-           " have almost the same composition, x = " + FormatNumber(s.x_given) + " and " +
-           FormatNumber(t.x_given) +
-           " (closer than 1e-6); replicates of one composition give the same x");
-    }
-  }
-
-  for (Sample& sample : dataset.samples) {
-    std::vector<std::string> warnings;
-    if (sample.k_path.empty()) {
-      sample.nk = ReadNkFile(sample.path, sample.columns, &warnings);
-      sample.checksum = Fnv1a64Hex(ReadFileText(sample.path));
-    } else {
-      sample.nk = ReadNkPair(sample.path, sample.k_path, &warnings);
-      sample.checksum = Fnv1a64Hex(ReadFileText(sample.path) + ReadFileText(sample.k_path));
-    }
-    // The readers' warnings already begin with the file (and line).
-    for (std::string& warning : warnings) dataset.warnings.push_back(std::move(warning));
-  }
+  CheckDistinctFiles(manifest, dataset.samples);
+  SortByComposition(manifest, &dataset.samples);
+  ReadSampleData(&dataset.samples, &dataset.warnings);
   // Nor can one measurement copied under two names (or columns) be two compositions.
-  for (std::size_t i = 0; i < dataset.samples.size(); ++i) {
-    for (std::size_t j = 0; j < i; ++j) {
-      const Sample& s = dataset.samples[j];
-      const Sample& t = dataset.samples[i];
-      if (s.nk.lambda_nm == t.nk.lambda_nm && s.nk.n == t.nk.n && s.nk.k == t.nk.k) {
-        Fail(manifest + ": samples " + Quote60(s.file) + " and " + Quote60(t.file) +
-             " hold the same n, k at every wavelength (at x = " + FormatNumber(s.x_given) +
-             " and " + FormatNumber(t.x_given) +
-             "); one measurement is one composition, and one sample");
-      }
-    }
-  }
+  CheckDistinctMeasurements(manifest, dataset.samples);
   return dataset;
 }
 

@@ -161,6 +161,130 @@ AngularError AngularDeltaE00(const color::Colorimeter& d65, const RendererMateri
   return error;
 }
 
+namespace {
+
+// Linear sRGB at each angle of the RGB conductor whose (log eta, log k) per channel are q.
+std::vector<color::RGB> ConductorCurve(const Eigen::VectorXd& q,
+                                       const std::vector<double>& angles_deg) {
+  std::vector<color::RGB> rgb;
+  for (double angle : angles_deg) {
+    color::RGB v{};
+    for (int c = 0; c < 3; ++c) {
+      Channel(v, c) = ConductorReflectance(IndexFromLogs(q[2 * c], q[2 * c + 1]), angle);
+    }
+    rgb.push_back(v);
+  }
+  return rgb;
+}
+
+// The RGB conductor fitted per channel on cube roots, from the best of a few starts.
+Eigen::VectorXd FitConductorPerChannel(const RendererMaterials& m) {
+  Eigen::VectorXd p(6);
+  for (int c = 0; c < 3; ++c) {
+    std::vector<double> target;
+    for (const color::RGB& rgb : m.spectral_rgb) target.push_back(Channel(rgb, c));
+    const auto residuals = [&](const Eigen::VectorXd& q) {
+      return ChannelResiduals(q, m.angle_deg, target);
+    };
+    Eigen::VectorXd best(2);
+    double best_cost = INFINITY;
+    for (double eta : {0.05, 0.2, 0.5, 1.0, 2.0, 4.0}) {
+      for (double k : {0.5, 1.5, 3.0, 6.0, 12.0}) {
+        const Eigen::Vector2d q(std::log(eta), std::log(k));
+        const double cost = residuals(q).squaredNorm();
+        if (cost < best_cost) {
+          best_cost = cost;
+          best = q;
+        }
+      }
+    }
+    p.segment<2>(2 * c) = LevenbergMarquardt(residuals, best, 200);
+  }
+  return p;
+}
+
+// The RGB conductor closest to the spectral colour over angle.
+RgbConductor FitRgbConductor(const color::Colorimeter& d65, const RendererMaterials& m) {
+  // First per channel on cube roots, from the best of a few starts; then all six
+  // parameters together on the CIEDE2000 differences themselves, which matters where the
+  // colour lies outside the sRGB gamut (a channel above 1 cannot be matched: the others
+  // move to keep the colour close). The one with the smaller largest difference is kept.
+  RgbConductor conductor;
+  Eigen::VectorXd p = FitConductorPerChannel(m);
+  constexpr double kPower = 2.0;  // sum of dE^4: close to the largest dE
+  const auto delta_e = [&](const Eigen::VectorXd& q) {
+    const std::vector<color::RGB> rgb = ConductorCurve(q, m.angle_deg);
+    Eigen::VectorXd r(rgb.size());
+    for (std::size_t i = 0; i < rgb.size(); ++i) {
+      r[i] = std::pow(color::DeltaE00(m.spectral_lab[i], LabOfRGB(d65, rgb[i])), kPower);
+    }
+    return r;
+  };
+  const Eigen::VectorXd p_de = LevenbergMarquardt(delta_e, p, 60);
+  if (delta_e(p_de).maxCoeff() < delta_e(p).maxCoeff()) {
+    p = p_de;
+    conductor.fit =
+        "per-channel least squares on cube roots, then the sum of CIEDE2000^4 over angles";
+  } else {
+    conductor.fit = "per-channel least squares on cube roots";
+  }
+  // A channel driven to R = 1 may end at eta = k = 1e-4 (N -> 0) as well as at
+  // eta = 1e-4, k = 100; the metal-like one is written when it does as well.
+  for (int c = 0; c < 3; ++c) {
+    if (p[2 * c] <= kMinLog + 1e-9 && p[2 * c + 1] < 0) {
+      Eigen::VectorXd q = p;
+      q[2 * c + 1] = kMaxLog;
+      if (delta_e(q).maxCoeff() <= delta_e(p).maxCoeff() + 1e-9) p = q;
+    }
+  }
+  for (int c = 0; c < 3; ++c) {
+    const std::complex<double> index = IndexFromLogs(p[2 * c], p[2 * c + 1]);
+    Channel(conductor.eta, c) = index.real();
+    Channel(conductor.k, c) = index.imag();
+  }
+  conductor.error = AngularDeltaE00(d65, m, ConductorCurve(p, m.angle_deg));
+  return conductor;
+}
+
+// Fits the F82-tint and Gulbrandsen parameters to the colours at 0 and 82 degrees.
+void FitEdgeTints(const color::RGB& f0, const color::RGB& f82, RendererMaterials* m) {
+  m->f82.f0 = f0;
+  m->f82.f82 = f82;
+  for (int c = 0; c < 3; ++c) {
+    Channel(m->f82.tint, c) =
+        Channel(f82, c) / SchlickFresnel(Channel(f0, c), CosDeg(kF82AngleDeg));
+    const double r = std::clamp(Channel(f0, c), 0.0, kGulbrandsenMaxR);
+    Channel(m->gulbrandsen.r, c) = r;
+    m->gulbrandsen.r_clamped[c] = r != Channel(f0, c);
+    bool clamped = false;
+    Channel(m->gulbrandsen.g, c) = SolveEdgeTint(r, Channel(f82, c), kF82AngleDeg, &clamped);
+    m->gulbrandsen.g_clamped[c] = clamped;
+  }
+}
+
+// Scores the F82-tint, Schlick and Gulbrandsen curves against the spectral colour over angle.
+void ScoreEdgeTints(const color::Colorimeter& d65, const color::RGB& f0, RendererMaterials* m) {
+  std::vector<color::RGB> f82_model, schlick, gulbrandsen;
+  for (double angle : m->angle_deg) {
+    const double mu = CosDeg(angle);
+    color::RGB b{}, s{}, g{};
+    for (int c = 0; c < 3; ++c) {
+      Channel(b, c) = F82TintFresnel(Channel(f0, c), Channel(m->f82.tint, c), mu);
+      Channel(s, c) = SchlickFresnel(Channel(f0, c), mu);
+      Channel(g, c) = ConductorReflectance(
+          GulbrandsenIndex(Channel(m->gulbrandsen.r, c), Channel(m->gulbrandsen.g, c)), angle);
+    }
+    f82_model.push_back(b);
+    schlick.push_back(s);
+    gulbrandsen.push_back(g);
+  }
+  m->f82.error = AngularDeltaE00(d65, *m, f82_model);
+  m->f82.schlick_error = AngularDeltaE00(d65, *m, schlick);
+  m->gulbrandsen.error = AngularDeltaE00(d65, *m, gulbrandsen);
+}
+
+}  // namespace
+
 RendererMaterials FitRendererMaterials(const color::Colorimeter& d65,
                                        const std::vector<std::complex<double>>& index,
                                        const std::string& what) {
@@ -184,106 +308,9 @@ RendererMaterials FitRendererMaterials(const color::Colorimeter& d65,
   }
   const color::RGB f0 = m.spectral_rgb.front();
   const color::RGB f82 = color::LinearSRGBFromXYZ(color::MaterialXYZ(d65, index, kF82AngleDeg));
-  // RGB conductor. First per channel on cube roots, from the best of a few starts; then
-  // all six parameters together on the CIEDE2000 differences themselves, which matters
-  // where the colour lies outside the sRGB gamut (a channel above 1 cannot be matched:
-  // the others move to keep the colour close). The one with the smaller largest
-  // difference is kept.
-  Eigen::VectorXd p(6);
-  for (int c = 0; c < 3; ++c) {
-    std::vector<double> target;
-    for (const color::RGB& rgb : m.spectral_rgb) target.push_back(Channel(rgb, c));
-    const auto residuals = [&](const Eigen::VectorXd& q) {
-      return ChannelResiduals(q, m.angle_deg, target);
-    };
-    Eigen::VectorXd best(2);
-    double best_cost = INFINITY;
-    for (double eta : {0.05, 0.2, 0.5, 1.0, 2.0, 4.0}) {
-      for (double k : {0.5, 1.5, 3.0, 6.0, 12.0}) {
-        const Eigen::Vector2d q(std::log(eta), std::log(k));
-        const double cost = residuals(q).squaredNorm();
-        if (cost < best_cost) {
-          best_cost = cost;
-          best = q;
-        }
-      }
-    }
-    p.segment<2>(2 * c) = LevenbergMarquardt(residuals, best, 200);
-  }
-  const auto curve = [&](const Eigen::VectorXd& q) {
-    std::vector<color::RGB> rgb;
-    for (double angle : m.angle_deg) {
-      color::RGB v{};
-      for (int c = 0; c < 3; ++c) {
-        Channel(v, c) = ConductorReflectance(IndexFromLogs(q[2 * c], q[2 * c + 1]), angle);
-      }
-      rgb.push_back(v);
-    }
-    return rgb;
-  };
-  constexpr double kPower = 2.0;  // sum of dE^4: close to the largest dE
-  const auto delta_e = [&](const Eigen::VectorXd& q) {
-    const std::vector<color::RGB> rgb = curve(q);
-    Eigen::VectorXd r(rgb.size());
-    for (std::size_t i = 0; i < rgb.size(); ++i) {
-      r[i] = std::pow(color::DeltaE00(m.spectral_lab[i], LabOfRGB(d65, rgb[i])), kPower);
-    }
-    return r;
-  };
-  const Eigen::VectorXd p_de = LevenbergMarquardt(delta_e, p, 60);
-  if (delta_e(p_de).maxCoeff() < delta_e(p).maxCoeff()) {
-    p = p_de;
-    m.rgb_conductor.fit =
-        "per-channel least squares on cube roots, then the sum of CIEDE2000^4 over angles";
-  } else {
-    m.rgb_conductor.fit = "per-channel least squares on cube roots";
-  }
-  // A channel driven to R = 1 may end at eta = k = 1e-4 (N -> 0) as well as at
-  // eta = 1e-4, k = 100; the metal-like one is written when it does as well.
-  for (int c = 0; c < 3; ++c) {
-    if (p[2 * c] <= kMinLog + 1e-9 && p[2 * c + 1] < 0) {
-      Eigen::VectorXd q = p;
-      q[2 * c + 1] = kMaxLog;
-      if (delta_e(q).maxCoeff() <= delta_e(p).maxCoeff() + 1e-9) p = q;
-    }
-  }
-  for (int c = 0; c < 3; ++c) {
-    const std::complex<double> index = IndexFromLogs(p[2 * c], p[2 * c + 1]);
-    Channel(m.rgb_conductor.eta, c) = index.real();
-    Channel(m.rgb_conductor.k, c) = index.imag();
-  }
-  m.rgb_conductor.error = AngularDeltaE00(d65, m, curve(p));
-
-  // F82-tint and Gulbrandsen.
-  m.f82.f0 = f0;
-  m.f82.f82 = f82;
-  for (int c = 0; c < 3; ++c) {
-    Channel(m.f82.tint, c) = Channel(f82, c) / SchlickFresnel(Channel(f0, c), CosDeg(kF82AngleDeg));
-    const double r = std::clamp(Channel(f0, c), 0.0, kGulbrandsenMaxR);
-    Channel(m.gulbrandsen.r, c) = r;
-    m.gulbrandsen.r_clamped[c] = r != Channel(f0, c);
-    bool clamped = false;
-    Channel(m.gulbrandsen.g, c) = SolveEdgeTint(r, Channel(f82, c), kF82AngleDeg, &clamped);
-    m.gulbrandsen.g_clamped[c] = clamped;
-  }
-
-  std::vector<color::RGB> f82_model, schlick, gulbrandsen;
-  for (double angle : m.angle_deg) {
-    const double mu = CosDeg(angle);
-    color::RGB b{}, s{}, g{};
-    for (int c = 0; c < 3; ++c) {
-      Channel(b, c) = F82TintFresnel(Channel(f0, c), Channel(m.f82.tint, c), mu);
-      Channel(s, c) = SchlickFresnel(Channel(f0, c), mu);
-      Channel(g, c) = ConductorReflectance(
-          GulbrandsenIndex(Channel(m.gulbrandsen.r, c), Channel(m.gulbrandsen.g, c)), angle);
-    }
-    f82_model.push_back(b);
-    schlick.push_back(s);
-    gulbrandsen.push_back(g);
-  }
-  m.f82.error = AngularDeltaE00(d65, m, f82_model);
-  m.f82.schlick_error = AngularDeltaE00(d65, m, schlick);
-  m.gulbrandsen.error = AngularDeltaE00(d65, m, gulbrandsen);
+  m.rgb_conductor = FitRgbConductor(d65, m);
+  FitEdgeTints(f0, f82, &m);
+  ScoreEdgeTints(d65, f0, &m);
   return m;
 }
 

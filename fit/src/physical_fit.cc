@@ -9,14 +9,14 @@
 #include <mutex>
 #include <sstream>
 
-#include "alloycolor/fit/physical_costs.h"
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/grid.h"
 #include "alloycolor/core/io.h"
 #include "alloycolor/core/progress.h"
 #include "alloycolor/core/text.h"
-#include "alloycolor/model/optics.h"
 #include "alloycolor/core/units.h"
+#include "alloycolor/fit/physical_costs.h"
+#include "alloycolor/model/optics.h"
 
 namespace alloycolor::fit {
 namespace {
@@ -647,7 +647,8 @@ constexpr double kMaxPhysicalIndex = 50;
 std::string Unphysical(const PhysicalModel& model, const Dataset& dataset) {
   std::vector<double> grid;
   for (int j = 0; j <= 200; ++j) {
-    grid.push_back(model.lambda_min_nm() + (model.lambda_max_nm() - model.lambda_min_nm()) * j / 200.0);
+    grid.push_back(model.lambda_min_nm() +
+                   (model.lambda_max_nm() - model.lambda_min_nm()) * j / 200.0);
   }
   double data_max = 0;
   for (const Sample& s : dataset.samples) {
@@ -671,8 +672,9 @@ std::string Unphysical(const PhysicalModel& model, const Dataset& dataset) {
         return "is not passive (eps2 = " + FormatNumber(eps[j].imag()) + ")" + where.str();
       }
       if (nk.real() > limit || nk.imag() > limit) {
-        return "has a resonance (n = " + FormatNumber(nk.real()) + ", k = " +
-               FormatNumber(nk.imag()) + ", limit " + FormatNumber(limit) + ")" + where.str();
+        return "has a resonance (n = " + FormatNumber(nk.real()) +
+               ", k = " + FormatNumber(nk.imag()) + ", limit " + FormatNumber(limit) + ")" +
+               where.str();
       }
     }
   }
@@ -711,6 +713,277 @@ PhysicalFitResult FitPhysical(const Dataset& dataset, const PhysicalFitOptions& 
 
 namespace {
 
+// The start model when it can warm-start this fit: the same degree, ends and terms.
+const PhysicalModel* UsableWarmStart(const PhysicalFitOptions& options, int degree,
+                                     const SampleData& lo_end, const SampleData& hi_end) {
+  const PhysicalModel* warm = options.start;
+  if (warm != nullptr && (warm->layout().degree() != degree || warm->x_min() != lo_end.x ||
+                          warm->x_max() != hi_end.x ||
+                          (options.terms != "auto" &&
+                           ParseInterbandTerms(options.terms) != warm->layout().interband()))) {
+    warm = nullptr;
+  }
+  return warm;
+}
+
+// The interband terms of the joint fit and the end samples' fits with them.
+struct TermChoice {
+  std::string option;  // "auto", the terms asked for, or the warm start's
+  std::vector<std::string> candidates;
+  std::vector<TermKind> kinds;
+  std::vector<SolveResult> lo_fits, hi_fits;
+  nlohmann::json auto_scores = nlohmann::json::array();
+};
+
+// Chooses the interband terms: the warm start's, the user's, or auto's lowest BIC of the
+// end samples' fits.
+TermChoice ChooseTerms(const FitData& data, const PhysicalFitOptions& options,
+                       const PhysicalModel* warm) {
+  const SampleData& lo_end = data.samples.front();
+  const SampleData& hi_end = data.samples.back();
+  TermChoice choice;
+  choice.option = warm != nullptr ? InterbandTermsText(warm->layout().interband()) : options.terms;
+  if (choice.option == "auto") {
+    if (data.infrared) {
+      choice.candidates.push_back("none");
+    } else {
+      for (const char* c : kAutoTerms) choice.candidates.push_back(c);
+    }
+  } else {
+    choice.candidates.push_back(choice.option);
+  }
+  double best_bic = HUGE_VAL;
+  for (const std::string& candidate : choice.candidates) {
+    const std::vector<TermKind> k = ParseInterbandTerms(candidate);
+    if (warm != nullptr) {
+      choice.kinds = k;
+      break;
+    }
+    const PhysicalLayout end_layout(k, 0);
+    std::ostringstream msg;
+    msg << "fitting the end samples (x = " << lo_end.x << ", " << hi_end.x << ") with terms "
+        << InterbandTermsText(k);
+    Report(options.progress, msg.str());
+    auto lo = FitEndSample(end_layout, lo_end, data, options.end_fits);
+    auto hi = FitEndSample(end_layout, hi_end, data, options.end_fits);
+    const int p = end_layout.num_parameters();
+    const double bic = Bic(lo.front().cost, 2 * lo_end.eps.size(), p) +
+                       Bic(hi.front().cost, 2 * hi_end.eps.size(), p);
+    choice.auto_scores.push_back({{"terms", InterbandTermsText(k)},
+                                  {"end_costs", {lo.front().cost, hi.front().cost}},
+                                  {"bic", bic}});
+    if (bic < best_bic) {
+      best_bic = bic;
+      choice.kinds = k;
+      choice.lo_fits = std::move(lo);
+      choice.hi_fits = std::move(hi);
+    }
+  }
+  return choice;
+}
+
+// Adds quadratics through the ends' and a middle sample's own fits to the joint starts:
+// they carry the parameters' curvature that the straight line lacks.
+void AddQuadraticStarts(const PhysicalLayout& layout, const Basis& basis, const FitData& data,
+                        const std::vector<double>& r_lo, const std::vector<double>& r_hi,
+                        std::vector<std::vector<double>>* starts) {
+  const int n = static_cast<int>(data.samples.size());
+  const int np = layout.num_parameters();
+  const int nb = layout.basis_size();
+  const SampleData& lo_end = data.samples.front();
+  const SampleData& hi_end = data.samples.back();
+  int mid = 1;
+  for (int i = 1; i < n - 1; ++i) {
+    if (std::abs(basis.U(data.samples[i].x)) < std::abs(basis.U(data.samples[mid].x))) mid = i;
+  }
+  const double um = basis.U(data.samples[mid].x);
+  if (!(std::abs(um) < 0.8)) return;
+  const PhysicalLayout single(layout.interband(), 0);
+  // The middle sample's terms keep their roles: each centre near the span of the
+  // ends' centres, and the straight line as one more start.
+  std::vector<double> v_lo(np), v_hi(np);
+  PhysicalValuesFromRaw(single, r_lo.data(), v_lo.data());
+  PhysicalValuesFromRaw(single, r_hi.data(), v_hi.data());
+  std::vector<std::pair<double, double>> windows;
+  for (int t = 1; t < layout.num_terms(); ++t) {
+    const int k = layout.term_offset(t) + 1;
+    windows.emplace_back(std::min(v_lo[k], v_hi[k]) - 0.3, std::max(v_lo[k], v_hi[k]) + 0.3);
+  }
+  const double t_mid = (data.samples[mid].x - lo_end.x) / (hi_end.x - lo_end.x);
+  std::vector<double> line_mid(np);
+  for (int k = 0; k < np; ++k) line_mid[k] = r_lo[k] + (r_hi[k] - r_lo[k]) * t_mid;
+  std::vector<SolveResult> fits;
+  try {
+    fits = FitSingle(single, data.samples[mid], data, windows, &line_mid);
+  } catch (const Error&) {
+    // No start converged: the straight line alone.
+  }
+  Eigen::Matrix3d a;
+  for (int row = 0; row < 3; ++row) {
+    const double u = row == 0 ? -1.0 : row == 1 ? um : 1.0;
+    double p[3];
+    LegendreBasis(u, 2, p);
+    for (int d = 0; d < 3; ++d) a(row, d) = p[d];
+  }
+  const Eigen::Matrix3d inverse = a.inverse();
+  for (size_t f = 0; f < fits.size() && f < 3; ++f) {
+    if (!(fits[f].cost <= 100.0 * fits.front().cost)) break;
+    std::vector<double> start(layout.num_coefficients(), 0.0);
+    for (int k = 0; k < np; ++k) {
+      const Eigen::Vector3d c = inverse * Eigen::Vector3d(r_lo[k], fits[f].coeffs[k], r_hi[k]);
+      for (int d = 0; d < 3; ++d) start[k * nb + d] = c[d];
+    }
+    starts->push_back(start);
+  }
+}
+
+// The joint fit's starts: the warm start, or the straight line between the ends' best fits
+// and quadratics through the ends and the middle sample's best fits.
+std::vector<std::vector<double>> JointStarts(const PhysicalLayout& layout, const Basis& basis,
+                                             const FitData& data, const PhysicalModel* warm,
+                                             const TermChoice& terms) {
+  std::vector<std::vector<double>> starts;
+  if (warm != nullptr) {
+    starts.push_back(warm->coeffs());
+    return starts;
+  }
+  const int np = layout.num_parameters();
+  const int nb = layout.basis_size();
+  const std::vector<double>& r_lo = terms.lo_fits.front().coeffs;
+  const std::vector<double>& r_hi = terms.hi_fits.front().coeffs;
+  std::vector<double> start(layout.num_coefficients(), 0.0);
+  for (int k = 0; k < np; ++k) {
+    start[k * nb] = 0.5 * (r_lo[k] + r_hi[k]);
+    if (nb > 1) start[k * nb + 1] = 0.5 * (r_hi[k] - r_lo[k]);
+  }
+  starts.push_back(start);
+  if (data.samples.size() > 2 && layout.degree() >= 2) {
+    AddQuadraticStarts(layout, basis, data, r_lo, r_hi, &starts);
+  }
+  return starts;
+}
+
+// The best joint solution: every start gets kRaceIterations; the best continues to
+// convergence.
+SolveResult RaceStarts(const PhysicalLayout& layout, const std::vector<const SampleData*>& all,
+                       const Basis& basis, const Bounds& bounds,
+                       const std::vector<std::vector<double>>& starts, int max_iterations) {
+  std::vector<std::unique_ptr<FitProblem>> problems;
+  SolveResult best;
+  best.cost = HUGE_VAL;
+  size_t leader = 0;
+  for (const auto& start : starts) {
+    problems.push_back(std::make_unique<FitProblem>(layout, all, basis, bounds, start));
+    SolveResult r = problems.back()->Solve(kRaceIterations, 1e-12);
+    if (r.cost < best.cost) {
+      best = std::move(r);
+      leader = problems.size() - 1;
+    }
+  }
+  if (std::isfinite(best.cost) && !best.converged) {
+    const int done = best.iterations;
+    best = problems[leader]->Solve(std::max(1, max_iterations - done), 1e-12);
+    best.iterations += done;
+  }
+  return best;
+}
+
+// The joint solution's residual statistics and (when asked for) its coefficients' covariance.
+struct JointCovariance {
+  size_t residuals = 0;
+  double residual_variance = 0;
+  double rho = 0;        // the residuals' lag-1 autocorrelation along wavelength
+  double inflation = 1;  // (1 + rho) / (1 - rho)
+  std::vector<double> covariance;
+  bool pseudo_inverse = false;
+};
+
+// The covariance at the joint solution, scaled by the residual variance and inflated for
+// residuals correlated along wavelength.
+JointCovariance CovarianceAt(const PhysicalLayout& layout,
+                             const std::vector<const SampleData*>& all, const Basis& basis,
+                             const Bounds& bounds, const SolveResult& best, bool wanted,
+                             std::vector<std::string>* warnings) {
+  JointCovariance result;
+  FitProblem final_problem(layout, all, basis, bounds, best.coeffs);
+  result.residuals = final_problem.residuals();
+  const double dof =
+      std::max(1.0, static_cast<double>(result.residuals) - layout.num_coefficients());
+  result.residual_variance = 2.0 * best.cost / dof;
+  // Residuals correlated along wavelength (model error is smooth) carry less information
+  // than their number says: inflate by the AR(1) factor (1 + rho) / (1 - rho).
+  result.rho = std::clamp(final_problem.ResidualAutocorrelation(), 0.0, 0.99);
+  result.inflation = (1.0 + result.rho) / (1.0 - result.rho);
+  if (wanted) {
+    result.covariance = final_problem.Covariance(&result.pseudo_inverse);
+    for (double& c : result.covariance) c *= result.residual_variance * result.inflation;
+    if (result.covariance.empty()) warnings->push_back("the covariance could not be computed");
+  }
+  return result;
+}
+
+// The fit summary's account of how the covariance was computed.
+void DescribeCovariance(const JointCovariance& cov, nlohmann::json* fit) {
+  if (cov.covariance.empty()) {
+    (*fit)["covariance"] = "none";
+    return;
+  }
+  (*fit)["covariance"] =
+      cov.pseudo_inverse
+          ? "ceres::Covariance dense SVD, pseudo-inverse (the Jacobian is rank-deficient: "
+            "some combinations of coefficients are not determined by the data), scaled by "
+            "the residual variance times (1 + rho) / (1 - rho), rho the residuals' lag-1 "
+            "autocorrelation along wavelength"
+          : "ceres::Covariance dense SVD, scaled by the residual variance times "
+            "(1 + rho) / (1 - rho), rho the residuals' lag-1 autocorrelation along "
+            "wavelength";
+  (*fit)["covariance_rank_deficient"] = cov.pseudo_inverse;
+  (*fit)["residual_variance"] = cov.residual_variance;
+  (*fit)["residual_autocorrelation"] = cov.rho;
+  (*fit)["variance_inflation"] = cov.inflation;
+}
+
+// The fit summary of the joint fit: solver, terms and how they were chosen, starts,
+// per-sample misfits and covariance.
+FitSummary JointFitSummary(const PhysicalModel& model, const FitData& data, int degree,
+                           const SolveResult& best, const TermChoice& terms,
+                           const PhysicalModel* warm, int joint_starts,
+                           const JointCovariance& cov) {
+  FitSummary summary;
+  summary.solver = "ceres levenberg-marquardt, dense normal cholesky (eigen)";
+  summary.degree = degree;
+  summary.final_cost = best.cost;
+  summary.iterations = best.iterations;
+  summary.converged = best.converged;
+  summary.termination = best.termination;
+  summary.rms_relative_eps = std::sqrt(2.0 * best.cost / std::max<size_t>(1, cov.residuals));
+  nlohmann::json& fit = summary.details;
+  fit["terms"] = InterbandTermsText(terms.kinds);
+  fit["terms_chosen_by"] = warm != nullptr ? "the start model (a warm start)"
+                           : terms.option == "auto"
+                               ? (data.infrared ? "auto: infrared data, drude only"
+                                                : "auto: lowest BIC of the end samples' fits")
+                               : "user";
+  if (terms.candidates.size() > 1) fit["terms_candidates"] = terms.auto_scores;
+  fit["lambda_step_nm"] = data.grid_nm.size() > 1 ? data.grid_nm[1] - data.grid_nm[0] : 0.0;
+  fit["wavelengths"] = data.grid_nm.size();
+  fit["joint_starts"] = joint_starts;
+  fit["end_fit_minima"] = {terms.lo_fits.size(), terms.hi_fits.size()};
+  fit["data_residuals"] = cov.residuals;
+  nlohmann::json per_sample = nlohmann::json::array();
+  for (const auto& s : data.samples) {
+    const SampleFit f = SampleMisfit(model, s);
+    per_sample.push_back({{"x", s.x},
+                          {"file", s.file},
+                          {"rms_relative_eps", f.rms},
+                          {"max_abs_dn", f.max_dn},
+                          {"max_abs_dk", f.max_dk}});
+  }
+  fit["rms_per_sample"] = per_sample;
+  DescribeCovariance(cov, &fit);
+  return summary;
+}
+
 PhysicalFitResult FitPhysicalAtDegree(const Dataset& dataset, const PhysicalFitOptions& options) {
   // Every sample (each replicate too) is an observation of its own; the degree is bounded
   // by the distinct compositions.
@@ -718,9 +991,6 @@ PhysicalFitResult FitPhysicalAtDegree(const Dataset& dataset, const PhysicalFitO
   if (compositions < 2) {
     throw Error(dataset.manifest_path + ": the physical fit needs at least two compositions");
   }
-  auto progress = [&](const std::string& message) {
-    if (options.progress) options.progress(message);
-  };
   if (options.degree < 0 || options.degree > kPhysicalMaxDegree) {
     throw Error("physical fit: degree must lie in 0.." + std::to_string(kPhysicalMaxDegree));
   }
@@ -737,226 +1007,31 @@ PhysicalFitResult FitPhysicalAtDegree(const Dataset& dataset, const PhysicalFitO
   const SampleData& hi_end = data.samples.back();
 
   // A warm start of the same degree on the same ends gives the terms and the one start.
-  const PhysicalModel* warm = options.start;
-  if (warm != nullptr &&
-      (warm->layout().degree() != degree || warm->x_min() != lo_end.x ||
-       warm->x_max() != hi_end.x ||
-       (options.terms != "auto" && ParseInterbandTerms(options.terms) != warm->layout().interband()))) {
-    warm = nullptr;
-  }
+  const PhysicalModel* warm = UsableWarmStart(options, degree, lo_end, hi_end);
   // Interband terms, and the end samples' fits with them.
-  std::vector<std::string> candidates;
-  const std::string terms_option = warm != nullptr ? InterbandTermsText(warm->layout().interband())
-                                                   : options.terms;
-  if (terms_option == "auto") {
-    if (data.infrared) {
-      candidates.push_back("none");
-    } else {
-      for (const char* c : kAutoTerms) candidates.push_back(c);
-    }
-  } else {
-    candidates.push_back(terms_option);
-  }
-  std::vector<TermKind> kinds;
-  std::vector<SolveResult> lo_fits, hi_fits;
-  double best_bic = HUGE_VAL;
-  nlohmann::json auto_scores = nlohmann::json::array();
-  for (const std::string& candidate : candidates) {
-    const std::vector<TermKind> k = ParseInterbandTerms(candidate);
-    if (warm != nullptr) {
-      kinds = k;
-      break;
-    }
-    const PhysicalLayout end_layout(k, 0);
-    std::ostringstream msg;
-    msg << "fitting the end samples (x = " << lo_end.x << ", " << hi_end.x << ") with terms "
-        << InterbandTermsText(k);
-    progress(msg.str());
-    auto lo = FitEndSample(end_layout, lo_end, data, options.end_fits);
-    auto hi = FitEndSample(end_layout, hi_end, data, options.end_fits);
-    const int p = end_layout.num_parameters();
-    const double bic = Bic(lo.front().cost, 2 * lo_end.eps.size(), p) +
-                       Bic(hi.front().cost, 2 * hi_end.eps.size(), p);
-    auto_scores.push_back({{"terms", InterbandTermsText(k)},
-                           {"end_costs", {lo.front().cost, hi.front().cost}},
-                           {"bic", bic}});
-    if (bic < best_bic) {
-      best_bic = bic;
-      kinds = k;
-      lo_fits = std::move(lo);
-      hi_fits = std::move(hi);
-    }
-  }
-  const PhysicalLayout layout(kinds, degree);
-  const int nb = layout.basis_size();
+  const TermChoice terms = ChooseTerms(data, options, warm);
+  const PhysicalLayout layout(terms.kinds, degree);
   const Basis basis{lo_end.x, hi_end.x};
   const Bounds bounds = MakeBounds(layout, data.omega_max);
   std::vector<const SampleData*> all;
   for (const auto& s : data.samples) all.push_back(&s);
 
-  // Joint starts: the straight line between the ends' best fits, and quadratics through
-  // the ends and the middle sample's best fits.
-  progress("joint fit: terms " + InterbandTermsText(kinds) + ", degree " + std::to_string(degree) +
-           ", " + std::to_string(n) + " samples x " + std::to_string(data.grid_nm.size()) +
-           " wavelengths");
-  const int np = layout.num_parameters();
-  std::vector<std::vector<double>> starts;
-  if (warm != nullptr) starts.push_back(warm->coeffs());
-  const std::vector<double> none;
-  const std::vector<double>& r_lo = warm != nullptr ? none : lo_fits.front().coeffs;
-  const std::vector<double>& r_hi = warm != nullptr ? none : hi_fits.front().coeffs;
-  auto line_at = [&](double x) {
-    const double t = (x - lo_end.x) / (hi_end.x - lo_end.x);
-    std::vector<double> r(np);
-    for (int k = 0; k < np; ++k) r[k] = r_lo[k] + (r_hi[k] - r_lo[k]) * t;
-    return r;
-  };
-  if (warm == nullptr) {
-    std::vector<double> start(layout.num_coefficients(), 0.0);
-    for (int k = 0; k < np; ++k) {
-      start[k * nb] = 0.5 * (r_lo[k] + r_hi[k]);
-      if (nb > 1) start[k * nb + 1] = 0.5 * (r_hi[k] - r_lo[k]);
-    }
-    starts.push_back(start);
-  }
-  // Quadratics through the ends and a middle sample's own fits (grid search as for the
-  // ends): they carry the parameters' curvature that the straight line lacks.
-  if (warm == nullptr && n > 2 && degree >= 2) {
-    int mid = 1;
-    for (int i = 1; i < n - 1; ++i) {
-      if (std::abs(basis.U(data.samples[i].x)) < std::abs(basis.U(data.samples[mid].x))) mid = i;
-    }
-    const double um = basis.U(data.samples[mid].x);
-    if (std::abs(um) < 0.8) {
-      const PhysicalLayout single(kinds, 0);
-      // The middle sample's terms keep their roles: each centre near the span of the
-      // ends' centres, and the straight line as one more start.
-      std::vector<double> v_lo(np), v_hi(np);
-      PhysicalValuesFromRaw(single, r_lo.data(), v_lo.data());
-      PhysicalValuesFromRaw(single, r_hi.data(), v_hi.data());
-      std::vector<std::pair<double, double>> windows;
-      for (int t = 1; t < layout.num_terms(); ++t) {
-        const int k = layout.term_offset(t) + 1;
-        windows.emplace_back(std::min(v_lo[k], v_hi[k]) - 0.3, std::max(v_lo[k], v_hi[k]) + 0.3);
-      }
-      const std::vector<double> line_mid = line_at(data.samples[mid].x);
-      std::vector<SolveResult> fits;
-      try {
-        fits = FitSingle(single, data.samples[mid], data, windows, &line_mid);
-      } catch (const Error&) {
-        // No start converged: the straight line alone.
-      }
-      Eigen::Matrix3d a;
-      for (int row = 0; row < 3; ++row) {
-        const double u = row == 0 ? -1.0 : row == 1 ? um : 1.0;
-        double p[3];
-        LegendreBasis(u, 2, p);
-        for (int d = 0; d < 3; ++d) a(row, d) = p[d];
-      }
-      const Eigen::Matrix3d inverse = a.inverse();
-      for (size_t f = 0; f < fits.size() && f < 3; ++f) {
-        if (!(fits[f].cost <= 100.0 * fits.front().cost)) break;
-        std::vector<double> start(layout.num_coefficients(), 0.0);
-        for (int k = 0; k < np; ++k) {
-          const Eigen::Vector3d c = inverse * Eigen::Vector3d(r_lo[k], fits[f].coeffs[k], r_hi[k]);
-          for (int d = 0; d < 3; ++d) start[k * nb + d] = c[d];
-        }
-        starts.push_back(start);
-      }
-    }
-  }
-  // Every start gets kRaceIterations; the best continues to convergence.
-  std::vector<std::unique_ptr<FitProblem>> problems;
-  SolveResult best;
-  best.cost = HUGE_VAL;
-  size_t leader = 0;
-  for (const auto& start : starts) {
-    problems.push_back(std::make_unique<FitProblem>(layout, all, basis, bounds, start));
-    SolveResult r = problems.back()->Solve(kRaceIterations, 1e-12);
-    if (r.cost < best.cost) {
-      best = std::move(r);
-      leader = problems.size() - 1;
-    }
-  }
-  const int joint_starts = static_cast<int>(starts.size());
-  if (std::isfinite(best.cost) && !best.converged) {
-    const int done = best.iterations;
-    best = problems[leader]->Solve(std::max(1, options.max_iterations - done), 1e-12);
-    best.iterations += done;
-  }
+  Report(options.progress, "joint fit: terms " + InterbandTermsText(terms.kinds) + ", degree " +
+                               std::to_string(degree) + ", " + std::to_string(n) + " samples x " +
+                               std::to_string(data.grid_nm.size()) + " wavelengths");
+  const std::vector<std::vector<double>> starts = JointStarts(layout, basis, data, warm, terms);
+  const SolveResult best = RaceStarts(layout, all, basis, bounds, starts, options.max_iterations);
   if (!std::isfinite(best.cost)) throw Error(dataset.manifest_path + ": the physical fit failed");
 
-  // Covariance at the solution.
-  FitProblem final_problem(layout, all, basis, bounds, best.coeffs);
-  const size_t residuals = final_problem.residuals();
-  const double dof = std::max(1.0, static_cast<double>(residuals) - layout.num_coefficients());
-  const double residual_variance = 2.0 * best.cost / dof;
-  // Residuals correlated along wavelength (model error is smooth) carry less information
-  // than their number says: inflate by the AR(1) factor (1 + rho) / (1 - rho).
-  const double rho = std::clamp(final_problem.ResidualAutocorrelation(), 0.0, 0.99);
-  const double inflation = (1.0 + rho) / (1.0 - rho);
-  std::vector<double> covariance;
-  bool pseudo_inverse = false;
-  if (options.covariance) {
-    covariance = final_problem.Covariance(&pseudo_inverse);
-    for (double& c : covariance) c *= residual_variance * inflation;
-    if (covariance.empty()) warnings.push_back("the covariance could not be computed");
-  }
-
+  const JointCovariance cov =
+      CovarianceAt(layout, all, basis, bounds, best, options.covariance, &warnings);
   PhysicalFitResult result;
-  result.terms = InterbandTermsText(kinds);
+  result.terms = InterbandTermsText(terms.kinds);
   result.model = std::make_unique<PhysicalModel>(dataset, data.grid_nm.front(), data.grid_nm.back(),
-                                                 layout, best.coeffs, covariance);
-  FitSummary summary;
-  summary.solver = "ceres levenberg-marquardt, dense normal cholesky (eigen)";
-  summary.degree = degree;
-  summary.final_cost = best.cost;
-  summary.iterations = best.iterations;
-  summary.converged = best.converged;
-  summary.termination = best.termination;
-  summary.rms_relative_eps = std::sqrt(2.0 * best.cost / std::max<size_t>(1, residuals));
-  nlohmann::json& fit = summary.details;
-  fit["terms"] = result.terms;
-  fit["terms_chosen_by"] = warm != nullptr ? "the start model (a warm start)"
-                           : terms_option == "auto"
-                               ? (data.infrared ? "auto: infrared data, drude only"
-                                                : "auto: lowest BIC of the end samples' fits")
-                               : "user";
-  if (candidates.size() > 1) fit["terms_candidates"] = auto_scores;
-  fit["lambda_step_nm"] = data.grid_nm.size() > 1 ? data.grid_nm[1] - data.grid_nm[0] : 0.0;
-  fit["wavelengths"] = data.grid_nm.size();
-  fit["joint_starts"] = joint_starts;
-  fit["end_fit_minima"] = {lo_fits.size(), hi_fits.size()};
-  fit["data_residuals"] = residuals;
-  nlohmann::json per_sample = nlohmann::json::array();
-  for (const auto& s : data.samples) {
-    const SampleFit f = SampleMisfit(*result.model, s);
-    per_sample.push_back({{"x", s.x},
-                          {"file", s.file},
-                          {"rms_relative_eps", f.rms},
-                          {"max_abs_dn", f.max_dn},
-                          {"max_abs_dk", f.max_dk}});
-  }
-  fit["rms_per_sample"] = per_sample;
-  if (covariance.empty()) {
-    fit["covariance"] = "none";
-  } else {
-    fit["covariance"] =
-        pseudo_inverse
-            ? "ceres::Covariance dense SVD, pseudo-inverse (the Jacobian is rank-deficient: "
-              "some combinations of coefficients are not determined by the data), scaled by "
-              "the residual variance times (1 + rho) / (1 - rho), rho the residuals' lag-1 "
-              "autocorrelation along wavelength"
-            : "ceres::Covariance dense SVD, scaled by the residual variance times "
-              "(1 + rho) / (1 - rho), rho the residuals' lag-1 autocorrelation along "
-              "wavelength";
-    fit["covariance_rank_deficient"] = pseudo_inverse;
-    fit["residual_variance"] = residual_variance;
-    fit["residual_autocorrelation"] = rho;
-    fit["variance_inflation"] = inflation;
-  }
-  result.model->set_fit_summary(std::move(summary));
-  if (pseudo_inverse) {
+                                                 layout, best.coeffs, cov.covariance);
+  result.model->set_fit_summary(JointFitSummary(*result.model, data, degree, best, terms, warm,
+                                                static_cast<int>(starts.size()), cov));
+  if (cov.pseudo_inverse) {
     warnings.push_back(
         "the physical fit's Jacobian is rank-deficient; its covariance is a "
         "pseudo-inverse");

@@ -23,7 +23,7 @@ namespace {
 // curves are fitted in with each value's weight.
 struct GridData {
   std::vector<double> grid_nm;
-  std::vector<double> x;                              // per sample
+  std::vector<double> x;                               // per sample
   std::vector<std::vector<std::complex<double>>> eps;  // [sample][node]
   double x_lo = 0, x_hi = 1;
   SmoothSpace space = SmoothSpace::kEps;
@@ -128,8 +128,7 @@ void Finish(Solution* s) {
 
 // Start values: at each knot the mean of the samples nearest to it (passive), or, for a
 // refit, the earlier model's eps there.
-void Start(const GridData& g, const std::vector<char>& in, const SmoothModel* start,
-           Solution* s) {
+void Start(const GridData& g, const std::vector<char>& in, const SmoothModel* start, Solution* s) {
   const size_t k = s->knots.size(), nodes = g.grid_nm.size();
   s->space = g.space;
   s->part1.assign(nodes, std::vector<double>(k, 0.0));
@@ -554,7 +553,8 @@ SampleError ErrorOf(const GridData& g, size_t i, const Solution& s) {
   for (size_t j = 0; j < g.grid_nm.size(); ++j) {
     const std::complex<double> model = EpsAt(s, j, g.x[i]);
     e.eps_sq += 0.5 * std::norm(model - g.eps[i][j]) / std::norm(g.eps[i][j]);
-    const double r_model = NormalReflectance(IndexFromPermittivity(Complex<double>{model.real(), model.imag()}));
+    const double r_model =
+        NormalReflectance(IndexFromPermittivity(Complex<double>{model.real(), model.imag()}));
     const double r_data = NormalReflectance(
         IndexFromPermittivity(Complex<double>{g.eps[i][j].real(), g.eps[i][j].imag()}));
     e.reflectance_sq += (r_model - r_data) * (r_model - r_data);
@@ -633,11 +633,88 @@ struct SpaceFit {
   double score = HUGE_VAL;
 };
 
+// The smoothing with the least left-out reflectance error over the folds (smoothing where
+// none scores), each candidate's errors recorded in f->result and the least in f->score.
+double CrossValidatedSmoothing(const GridData& g, const std::vector<std::vector<double>>& folds,
+                               const std::string& space, const SmoothFitOptions& options,
+                               double smoothing, SpaceFit* f) {
+  for (double candidate : SmoothingCandidates()) {
+    SampleError total;
+    LeftOutErrors(
+        g, folds,
+        [&](const std::vector<char>& in) {
+          Solution s = Solve(g, in, candidate, options);
+          s.converged = true;  // the Ceres form's best point counts either way
+          return s;
+        },
+        &total);
+    const double rms = std::sqrt(total.eps_sq / total.count);
+    const double rms_r = std::sqrt(total.reflectance_sq / total.count);
+    f->result.cross_validation.push_back({candidate, rms, rms_r});
+    std::ostringstream msg;
+    msg << "cross-validation" << space << ": smoothing " << candidate
+        << ", leave-one-out RMS error: relative eps " << rms << ", reflectance " << rms_r;
+    Report(options.progress, msg.str());
+    if (rms_r < f->score) {
+      f->score = rms_r;
+      smoothing = candidate;
+    }
+  }
+  return smoothing;
+}
+
+// The most probable smoothing at each wavelength by the restricted marginal likelihood
+// (recorded in result), and their median.
+double MarginalLikelihoodSmoothing(const GridData& g, const std::vector<double>& compositions,
+                                   const std::string& space, const SmoothFitOptions& options,
+                                   SmoothFitResult* result) {
+  const std::vector<char> all(g.x.size(), 1);
+  const std::vector<double>& grid = g.grid_nm;
+  const LinearSystems ls = AssembleAtCompositions(g, all, compositions);
+  const EvidenceTerms terms(ls, SmoothingCandidates());
+  const std::vector<size_t> choice = MostProbableSmoothings(terms);
+  for (size_t j = 0; j < grid.size(); ++j) {
+    result->smoothing_per_node.push_back(choice.empty() ? 0.0 : SmoothingCandidates()[choice[j]]);
+  }
+  std::ostringstream msg;
+  msg << "marginal likelihood" << space << ", the most probable smoothing per wavelength:";
+  for (double candidate : SmoothingCandidates()) {
+    const int nodes = static_cast<int>(std::count(result->smoothing_per_node.begin(),
+                                                  result->smoothing_per_node.end(), candidate));
+    result->evidence.push_back({candidate, nodes});
+    if (nodes > 0) msg << " " << candidate << " at " << nodes << ",";
+  }
+  msg << " of " << grid.size() << " wavelengths";
+  Report(options.progress, msg.str());
+  std::vector<double> sorted = result->smoothing_per_node;
+  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+  return sorted[sorted.size() / 2];
+}
+
+// Whether the Gaussian-process form, scored on the folds (its errors recorded in
+// f->result), beats f->score by more than kSimplerMargin.
+bool GaussianProcessWins(const GridData& g, const std::vector<std::vector<double>>& folds,
+                         const std::string& space, const SmoothFitOptions& options, SpaceFit* f) {
+  SmoothFitResult& result = f->result;
+  SampleError total;
+  const bool scored = LeftOutErrors(
+      g, folds, [&](const std::vector<char>& in) { return SolveGp(g, in); }, &total);
+  if (!scored || total.count == 0) return false;
+  result.gp_rms = std::sqrt(total.eps_sq / total.count);
+  result.gp_rms_reflectance = std::sqrt(total.reflectance_sq / total.count);
+  const bool use_gp = result.gp_rms_reflectance * kSimplerMargin < f->score;
+  std::ostringstream msg;
+  msg << "cross-validation" << space << ": gaussian process, leave-one-out RMS error: relative eps "
+      << result.gp_rms << ", reflectance " << result.gp_rms_reflectance
+      << (use_gp ? " (chosen)" : "");
+  Report(options.progress, msg.str());
+  return use_gp;
+}
+
 SpaceFit FitInSpace(const GridData& g, const SmoothFitOptions& options) {
   const std::string space = std::string(" (") + SmoothSpaceName(g.space) + ")";
   const std::vector<char> all(g.x.size(), 1);
   const std::vector<double> compositions = Compositions(g, all);
-  const std::vector<double>& grid = g.grid_nm;
   SpaceFit f;
   SmoothFitResult& result = f.result;
   double smoothing = options.smoothing;
@@ -646,28 +723,7 @@ SpaceFit FitInSpace(const GridData& g, const SmoothFitOptions& options) {
   const bool cross_validate = smoothing < 0 && folds.size() >= kMinFolds;
   if (cross_validate) {
     chosen_by = "leave-one-composition-out cross-validation";
-    for (double candidate : SmoothingCandidates()) {
-      SampleError total;
-      LeftOutErrors(
-          g, folds,
-          [&](const std::vector<char>& in) {
-            Solution s = Solve(g, in, candidate, options);
-            s.converged = true;  // the Ceres form's best point counts either way
-            return s;
-          },
-          &total);
-      const double rms = std::sqrt(total.eps_sq / total.count);
-      const double rms_r = std::sqrt(total.reflectance_sq / total.count);
-      result.cross_validation.push_back({candidate, rms, rms_r});
-      std::ostringstream msg;
-      msg << "cross-validation" << space << ": smoothing " << candidate
-          << ", leave-one-out RMS error: relative eps " << rms << ", reflectance " << rms_r;
-      Report(options.progress, msg.str());
-      if (rms_r < f.score) {
-        f.score = rms_r;
-        smoothing = candidate;
-      }
-    }
+    smoothing = CrossValidatedSmoothing(g, folds, space, options, smoothing, &f);
   } else if (smoothing < 0 && compositions.size() >= 3 && g.x.size() >= 4 &&
              compositions.size() <= static_cast<size_t>(options.max_knots)) {
     // Too few interior compositions for cross-validation to decide: the marginal
@@ -675,25 +731,7 @@ SpaceFit FitInSpace(const GridData& g, const SmoothFitOptions& options) {
     chosen_by =
         "restricted marginal likelihood (too few interior compositions to "
         "cross-validate)";
-    const LinearSystems ls = AssembleAtCompositions(g, all, compositions);
-    const EvidenceTerms terms(ls, SmoothingCandidates());
-    const std::vector<size_t> choice = MostProbableSmoothings(terms);
-    for (size_t j = 0; j < grid.size(); ++j) {
-      result.smoothing_per_node.push_back(choice.empty() ? 0.0 : SmoothingCandidates()[choice[j]]);
-    }
-    std::ostringstream msg;
-    msg << "marginal likelihood" << space << ", the most probable smoothing per wavelength:";
-    for (double candidate : SmoothingCandidates()) {
-      const int nodes = static_cast<int>(std::count(result.smoothing_per_node.begin(),
-                                                    result.smoothing_per_node.end(), candidate));
-      result.evidence.push_back({candidate, nodes});
-      if (nodes > 0) msg << " " << candidate << " at " << nodes << ",";
-    }
-    msg << " of " << grid.size() << " wavelengths";
-    Report(options.progress, msg.str());
-    std::vector<double> sorted = result.smoothing_per_node;
-    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
-    smoothing = sorted[sorted.size() / 2];
+    smoothing = MarginalLikelihoodSmoothing(g, compositions, space, options, &result);
   } else if (smoothing < 0) {
     smoothing = 0;
     chosen_by = "default: too few samples (or knots) to choose a smoothing";
@@ -717,22 +755,7 @@ SpaceFit FitInSpace(const GridData& g, const SmoothFitOptions& options) {
   }
   // The Gaussian-process form, scored on the same folds, replaces the PCHIP form where it
   // beats the best smoothing by more than kSimplerMargin.
-  bool use_gp = false;
-  if (cross_validate) {
-    SampleError total;
-    const bool scored = LeftOutErrors(
-        g, folds, [&](const std::vector<char>& in) { return SolveGp(g, in); }, &total);
-    if (scored && total.count > 0) {
-      result.gp_rms = std::sqrt(total.eps_sq / total.count);
-      result.gp_rms_reflectance = std::sqrt(total.reflectance_sq / total.count);
-      use_gp = result.gp_rms_reflectance * kSimplerMargin < f.score;
-      std::ostringstream msg;
-      msg << "cross-validation" << space
-          << ": gaussian process, leave-one-out RMS error: relative eps " << result.gp_rms
-          << ", reflectance " << result.gp_rms_reflectance << (use_gp ? " (chosen)" : "");
-      Report(options.progress, msg.str());
-    }
-  }
+  bool use_gp = cross_validate && GaussianProcessWins(g, folds, space, options, &f);
   Solution s;
   if (use_gp) {
     s = SolveGp(g, all);

@@ -41,8 +41,8 @@ auto NamingSource(const AlloyModel& model, F evaluate) -> decltype(evaluate()) {
 
 }  // namespace
 
-std::vector<std::complex<double>> AlloyModel::Index(
-    double x_atomic, const std::vector<double>& lambda_nm) const {
+std::vector<std::complex<double>> AlloyModel::Index(double x_atomic,
+                                                    const std::vector<double>& lambda_nm) const {
   std::vector<std::complex<double>> eps =
       NamingSource(*this, [&] { return Permittivity(x_atomic, lambda_nm); });
   for (size_t i = 0; i < eps.size(); ++i) {
@@ -289,7 +289,8 @@ std::vector<std::vector<std::complex<double>>> AlloyModel::PermittivityDraws(
 
 bool AlloyModel::DrudeAt(double x_atomic, double lambda_nm, DrudePoint* out) const {
   if (!(lambda_nm >= lambda_min_nm_ - 1e-9 && lambda_nm <= lambda_max_nm_ + 1e-9)) return false;
-  const std::complex<double> eps = Permittivity(x_atomic, {std::clamp(lambda_nm, lambda_min_nm_, lambda_max_nm_)})[0];
+  const std::complex<double> eps =
+      Permittivity(x_atomic, {std::clamp(lambda_nm, lambda_min_nm_, lambda_max_nm_)})[0];
   if (!DrudeInvertible(eps.real(), eps.imag())) return false;
   *out = InvertDrude(OmegaEvFromLambdaNm(lambda_nm), eps.real(), eps.imag());
   return true;
@@ -306,11 +307,13 @@ ParameterTable AlloyModel::Parameters(const std::vector<double>& xs) const {
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   constexpr int kDraws = 256;
   ParameterTable table;
-  table.notes = {"tau = hbar / gamma and m*/m_e = e^2 hbar^2 N_e / (eps0 m_e (hbar wp)^2) from "
-                 "the pointwise Drude inversion of the " + method() + " model (eq. 11, 12)" +
-                 (HasUncertainty() ? "; sigma from " + std::to_string(kDraws) +
-                                         " draws of the model's uncertainty"
-                                   : "")};
+  table.notes = {
+      "tau = hbar / gamma and m*/m_e = e^2 hbar^2 N_e / (eps0 m_e (hbar wp)^2) from "
+      "the pointwise Drude inversion of the " +
+      method() + " model (eq. 11, 12)" +
+      (HasUncertainty()
+           ? "; sigma from " + std::to_string(kDraws) + " draws of the model's uncertainty"
+           : "")};
   table.columns = {"N_e_m^-3"};
   for (double l : lambda) {
     std::ostringstream tau, mass;
@@ -353,8 +356,8 @@ ParameterTable AlloyModel::Parameters(const std::vector<double>& xs) const {
 void AlloyModel::CheckInRange(double x_atomic) const {
   if (!(x_atomic >= x_min_ - 1e-9 && x_atomic <= x_max_ + 1e-9)) {
     std::ostringstream msg;
-    msg << "composition x = " << x_atomic << " lies outside the fitted range [" << x_min_
-        << ", " << x_max_ << "] of the " << method() << " model (use --extrapolate)";
+    msg << "composition x = " << x_atomic << " lies outside the fitted range [" << x_min_ << ", "
+        << x_max_ << "] of the " << method() << " model (use --extrapolate)";
     throw Error(msg.str());
   }
 }
@@ -370,8 +373,7 @@ void AlloyModel::CheckLambda(const std::vector<double>& lambda_nm) const {
   }
 }
 
-void AlloyModel::SetCommon(const Dataset& dataset, double lambda_min_nm,
-                           double lambda_max_nm) {
+void AlloyModel::SetCommon(const Dataset& dataset, double lambda_min_nm, double lambda_max_nm) {
   system_ = dataset.system;
   composition_ = dataset.composition;
   training_.clear();
@@ -397,10 +399,8 @@ nlohmann::json AlloyModel::ToJson() const {
   doc["lambda_range_nm"] = {lambda_min_nm_, lambda_max_nm_};
   nlohmann::json samples = nlohmann::json::array();
   for (const TrainingSample& s : training_) {
-    samples.push_back({{"x", s.x_atomic},
-                       {"x_given", s.x_given},
-                       {"file", s.file},
-                       {"checksum", s.checksum}});
+    samples.push_back(
+        {{"x", s.x_atomic}, {"x_given", s.x_given}, {"file", s.file}, {"checksum", s.checksum}});
   }
   doc["training_samples"] = samples;
   doc["parameters"] = ParametersJson();
@@ -483,8 +483,7 @@ nlohmann::json AlloyModel::ToJson() const {
 namespace {
 
 // Field access that names the culprit.
-const nlohmann::json& Field(const nlohmann::json& doc, const char* key,
-                            const std::string& where) {
+const nlohmann::json& Field(const nlohmann::json& doc, const char* key, const std::string& where) {
   if (!doc.is_object() || !doc.contains(key)) {
     throw Error(where + ": missing field '" + key + "'");
   }
@@ -501,6 +500,166 @@ double Number(const nlohmann::json& value, const std::string& where) {
 std::string String(const nlohmann::json& value, const std::string& where) {
   if (!value.is_string()) throw Error(where + ": expected a string");
   return value.get<std::string>();
+}
+
+// Reads the model file's "training_samples": the compositions and files fitted.
+void ReadTrainingSamples(const nlohmann::json& doc, std::vector<TrainingSample>* training) {
+  const nlohmann::json& ts = Field(doc, "training_samples", "model");
+  if (!ts.is_array()) throw Error("training_samples: expected an array");
+  training->clear();
+  for (size_t i = 0; i < ts.size(); ++i) {
+    const std::string where = "training_samples[" + std::to_string(i) + "]";
+    training->push_back({Number(Field(ts[i], "x", where), where + ".x"),
+                         Number(Field(ts[i], "x_given", where), where + ".x_given"),
+                         String(Field(ts[i], "file", where), where + ".file"),
+                         String(Field(ts[i], "checksum", where), where + ".checksum")});
+  }
+}
+
+// Reads the model file's optional "in_sample": the model's errors on its own samples.
+void ReadInSample(const nlohmann::json& doc, std::vector<InSampleError>* in_sample) {
+  in_sample->clear();
+  if (!doc.contains("in_sample")) return;
+  const nlohmann::json& rows = doc.at("in_sample");
+  if (!rows.is_array()) throw Error("in_sample: expected an array");
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const std::string where = "in_sample[" + std::to_string(i) + "]";
+    InSampleError r;
+    r.x_atomic = Number(Field(rows[i], "x", where), where + ".x");
+    r.file = String(Field(rows[i], "file", where), where + ".file");
+    const nlohmann::json& de = Field(rows[i], "delta_e00", where);
+    r.delta_e00 = de.is_null() ? std::nan("") : Number(de, where + ".delta_e00");
+    r.reflectance_rms =
+        Number(Field(rows[i], "reflectance_rms", where), where + ".reflectance_rms");
+    if (!(r.reflectance_rms >= 0) || (std::isfinite(r.delta_e00) && !(r.delta_e00 >= 0))) {
+      throw Error(where + ": errors must be >= 0");
+    }
+    in_sample->push_back(std::move(r));
+  }
+}
+
+// The list of numbers under key in the "uncertainty" object u.
+std::vector<double> UncertaintyNumbers(const nlohmann::json& u, const char* key) {
+  const nlohmann::json& a = Field(u, key, "uncertainty");
+  if (!a.is_array()) throw Error(std::string("uncertainty.") + key + ": expected an array");
+  std::vector<double> v;
+  for (size_t i = 0; i < a.size(); ++i) {
+    v.push_back(Number(a[i], std::string("uncertainty.") + key + "[" + std::to_string(i) + "]"));
+  }
+  return v;
+}
+
+// The list of complex spectra ({re, im}) under key in the "uncertainty" object u.
+std::vector<std::vector<std::complex<double>>> UncertaintySpectra(const nlohmann::json& u,
+                                                                  const char* key) {
+  std::vector<std::vector<std::complex<double>>> list;
+  const nlohmann::json& a = u.at(key);
+  const std::string where = std::string("uncertainty.") + key;
+  if (!a.is_array()) throw Error(where + ": expected an array");
+  for (size_t r = 0; r < a.size(); ++r) {
+    const std::string at = where + "[" + std::to_string(r) + "]";
+    const nlohmann::json& re = Field(a[r], "re", at);
+    const nlohmann::json& im = Field(a[r], "im", at);
+    if (!re.is_array() || !im.is_array() || re.size() != im.size()) {
+      throw Error(at + ": expected arrays re and im of one length");
+    }
+    std::vector<std::complex<double>> v;
+    for (size_t j = 0; j < re.size(); ++j) {
+      v.emplace_back(Number(re[j], at + ".re"), Number(im[j], at + ".im"));
+    }
+    list.push_back(std::move(v));
+  }
+  return list;
+}
+
+// The model file's "uncertainty" object as the model's prediction error.
+PredictionError ReadPredictionError(const nlohmann::json& u) {
+  if (!u.is_object()) throw Error("uncertainty: expected an object");
+  PredictionError e;
+  e.lambda_nm = UncertaintyNumbers(u, "lambda_nm");
+  e.scale = UncertaintyNumbers(u, "scale");
+  e.compositions = UncertaintyNumbers(u, "compositions");
+  e.reference_gap = Number(Field(u, "reference_gap", "uncertainty"), "uncertainty.reference_gap");
+  e.calibration = Number(Field(u, "calibration", "uncertainty"), "uncertainty.calibration");
+  // Files before the gap exponent: B linear in the gap.
+  if (u.contains("gap_exponent")) {
+    e.gap_exponent = Number(u["gap_exponent"], "uncertainty.gap_exponent");
+  }
+  // Files before the end factor: every interval alike.
+  if (u.contains("end_factor")) {
+    e.end_factor = Number(u["end_factor"], "uncertainty.end_factor");
+  }
+  const double folds = Number(Field(u, "folds", "uncertainty"), "uncertainty.folds");
+  if (folds != std::floor(folds) || folds < 0 || folds > 1e6) {
+    throw Error("uncertainty.folds: expected a whole number >= 0");
+  }
+  e.folds = static_cast<int>(folds);
+  if (u.contains("precision")) e.precision = Number(u["precision"], "uncertainty.precision");
+  if (u.contains("misfit") || u.contains("scatter")) {
+    e.misfit_lambda_nm = UncertaintyNumbers(u, "misfit_lambda_nm");
+    if (u.contains("misfit")) e.misfit = UncertaintySpectra(u, "misfit");
+    if (u.contains("scatter")) e.scatter = UncertaintySpectra(u, "scatter");
+  }
+  return e;
+}
+
+// Reads the solver's account in the model file's "fit" object: method, degree, cost,
+// iterations, convergence.
+void ReadSolverSummary(const nlohmann::json& fit, FitSummary* summary) {
+  summary->solver = String(fit.at("method"), "fit.method");
+  const double degree = Number(Field(fit, "degree", "fit"), "fit.degree");
+  if (degree != std::floor(degree) || degree < -1 || degree > 100) {
+    throw Error("fit.degree: expected a whole number");
+  }
+  summary->degree = static_cast<int>(degree);
+  summary->final_cost = Number(Field(fit, "final_cost", "fit"), "fit.final_cost");
+  const double iterations = Number(Field(fit, "iterations", "fit"), "fit.iterations");
+  if (iterations != std::floor(iterations) || iterations < 0 || iterations > 1e9) {
+    throw Error("fit.iterations: expected a whole number");
+  }
+  summary->iterations = static_cast<int>(iterations);
+  const nlohmann::json& converged = Field(fit, "converged", "fit");
+  if (!converged.is_boolean()) throw Error("fit.converged: expected true or false");
+  summary->converged = converged.get<bool>();
+  summary->termination = String(Field(fit, "termination", "fit"), "fit.termination");
+  summary->rms_relative_eps = Number(Field(fit, "rms_relative_eps", "fit"), "fit.rms_relative_eps");
+}
+
+// Reads the model file's "fit.selection": how auto chose the method, with every score.
+void ReadMethodSelection(const nlohmann::json& sel, MethodSelection* selection) {
+  selection->metric = String(Field(sel, "metric", "fit.selection"), "fit.selection.metric");
+  selection->reason = String(Field(sel, "reason", "fit.selection"), "fit.selection.reason");
+  const nlohmann::json& scores = Field(sel, "scores", "fit.selection");
+  if (!scores.is_array()) throw Error("fit.selection.scores: expected an array");
+  for (size_t i = 0; i < scores.size(); ++i) {
+    const std::string where = "fit.selection.scores[" + std::to_string(i) + "]";
+    MethodScore m;
+    m.method = String(Field(scores[i], "method", where), where + ".method");
+    m.folds = static_cast<int>(Number(Field(scores[i], "folds", where), where + ".folds"));
+    if (scores[i].contains("end_miss")) {
+      m.end_miss = Number(scores[i].at("end_miss"), where + ".end_miss");
+    }
+    if (scores[i].contains("error")) {
+      m.error = String(scores[i].at("error"), where + ".error");
+    } else {
+      m.mean = Number(Field(scores[i], "mean", where), where + ".mean");
+      m.max = Number(Field(scores[i], "max", where), where + ".max");
+    }
+    selection->scores.push_back(m);
+  }
+}
+
+// Reads the model file's "fit" object: the solver's account, auto's selection, and the
+// method's own details.
+void ReadFitSummary(const nlohmann::json& fit, FitSummary* summary) {
+  if (!fit.is_object()) throw Error("fit: expected an object");
+  if (fit.contains("method")) ReadSolverSummary(fit, summary);
+  if (fit.contains("selection")) ReadMethodSelection(fit.at("selection"), &summary->selection);
+  summary->details = fit;
+  for (const char* key : {"method", "degree", "final_cost", "iterations", "converged",
+                          "termination", "rms_relative_eps", "selection"}) {
+    summary->details.erase(key);
+  }
 }
 
 }  // namespace
@@ -532,149 +691,12 @@ void AlloyModel::ReadCommon(const nlohmann::json& doc) {
   if (std::string(system_.a.symbol) == system_.b.symbol) {
     throw Error(std::string("system: a and b are both '") + system_.a.symbol + "'");
   }
-  const nlohmann::json& ts = Field(doc, "training_samples", "model");
-  if (!ts.is_array()) throw Error("training_samples: expected an array");
-  training_.clear();
-  for (size_t i = 0; i < ts.size(); ++i) {
-    const std::string where = "training_samples[" + std::to_string(i) + "]";
-    training_.push_back({Number(Field(ts[i], "x", where), where + ".x"),
-                         Number(Field(ts[i], "x_given", where), where + ".x_given"),
-                         String(Field(ts[i], "file", where), where + ".file"),
-                         String(Field(ts[i], "checksum", where), where + ".checksum")});
-  }
-  in_sample_.clear();
-  if (doc.contains("in_sample")) {
-    const nlohmann::json& rows = doc.at("in_sample");
-    if (!rows.is_array()) throw Error("in_sample: expected an array");
-    for (size_t i = 0; i < rows.size(); ++i) {
-      const std::string where = "in_sample[" + std::to_string(i) + "]";
-      InSampleError r;
-      r.x_atomic = Number(Field(rows[i], "x", where), where + ".x");
-      r.file = String(Field(rows[i], "file", where), where + ".file");
-      const nlohmann::json& de = Field(rows[i], "delta_e00", where);
-      r.delta_e00 = de.is_null() ? std::nan("") : Number(de, where + ".delta_e00");
-      r.reflectance_rms =
-          Number(Field(rows[i], "reflectance_rms", where), where + ".reflectance_rms");
-      if (!(r.reflectance_rms >= 0) || (std::isfinite(r.delta_e00) && !(r.delta_e00 >= 0))) {
-        throw Error(where + ": errors must be >= 0");
-      }
-      in_sample_.push_back(std::move(r));
-    }
-  }
+  ReadTrainingSamples(doc, &training_);
+  ReadInSample(doc, &in_sample_);
   prediction_error_ = PredictionError{};
-  if (doc.contains("uncertainty")) {
-    const nlohmann::json& u = doc.at("uncertainty");
-    if (!u.is_object()) throw Error("uncertainty: expected an object");
-    PredictionError e;
-    const auto numbers = [&](const char* key) {
-      const nlohmann::json& a = Field(u, key, "uncertainty");
-      if (!a.is_array()) throw Error(std::string("uncertainty.") + key + ": expected an array");
-      std::vector<double> v;
-      for (size_t i = 0; i < a.size(); ++i) {
-        v.push_back(Number(a[i], std::string("uncertainty.") + key + "[" + std::to_string(i) + "]"));
-      }
-      return v;
-    };
-    e.lambda_nm = numbers("lambda_nm");
-    e.scale = numbers("scale");
-    e.compositions = numbers("compositions");
-    e.reference_gap = Number(Field(u, "reference_gap", "uncertainty"), "uncertainty.reference_gap");
-    e.calibration = Number(Field(u, "calibration", "uncertainty"), "uncertainty.calibration");
-    // Files before the gap exponent: B linear in the gap.
-    if (u.contains("gap_exponent")) {
-      e.gap_exponent = Number(u["gap_exponent"], "uncertainty.gap_exponent");
-    }
-    // Files before the end factor: every interval alike.
-    if (u.contains("end_factor")) {
-      e.end_factor = Number(u["end_factor"], "uncertainty.end_factor");
-    }
-    const double folds = Number(Field(u, "folds", "uncertainty"), "uncertainty.folds");
-    if (folds != std::floor(folds) || folds < 0 || folds > 1e6) {
-      throw Error("uncertainty.folds: expected a whole number >= 0");
-    }
-    e.folds = static_cast<int>(folds);
-    if (u.contains("precision")) e.precision = Number(u["precision"], "uncertainty.precision");
-    const auto spectra = [&](const char* key) {
-      std::vector<std::vector<std::complex<double>>> list;
-      const nlohmann::json& a = u.at(key);
-      const std::string where = std::string("uncertainty.") + key;
-      if (!a.is_array()) throw Error(where + ": expected an array");
-      for (size_t r = 0; r < a.size(); ++r) {
-        const std::string at = where + "[" + std::to_string(r) + "]";
-        const nlohmann::json& re = Field(a[r], "re", at);
-        const nlohmann::json& im = Field(a[r], "im", at);
-        if (!re.is_array() || !im.is_array() || re.size() != im.size()) {
-          throw Error(at + ": expected arrays re and im of one length");
-        }
-        std::vector<std::complex<double>> v;
-        for (size_t j = 0; j < re.size(); ++j) {
-          v.emplace_back(Number(re[j], at + ".re"), Number(im[j], at + ".im"));
-        }
-        list.push_back(std::move(v));
-      }
-      return list;
-    };
-    if (u.contains("misfit") || u.contains("scatter")) {
-      e.misfit_lambda_nm = numbers("misfit_lambda_nm");
-      if (u.contains("misfit")) e.misfit = spectra("misfit");
-      if (u.contains("scatter")) e.scatter = spectra("scatter");
-    }
-    set_prediction_error(std::move(e));
-  }
+  if (doc.contains("uncertainty")) set_prediction_error(ReadPredictionError(doc.at("uncertainty")));
   fit_summary_ = FitSummary{};
-  if (doc.contains("fit")) {
-    const nlohmann::json& fit = doc.at("fit");
-    if (!fit.is_object()) throw Error("fit: expected an object");
-    if (fit.contains("method")) {
-      fit_summary_.solver = String(fit.at("method"), "fit.method");
-      const double degree = Number(Field(fit, "degree", "fit"), "fit.degree");
-      if (degree != std::floor(degree) || degree < -1 || degree > 100) {
-        throw Error("fit.degree: expected a whole number");
-      }
-      fit_summary_.degree = static_cast<int>(degree);
-      fit_summary_.final_cost = Number(Field(fit, "final_cost", "fit"), "fit.final_cost");
-      const double iterations = Number(Field(fit, "iterations", "fit"), "fit.iterations");
-      if (iterations != std::floor(iterations) || iterations < 0 || iterations > 1e9) {
-        throw Error("fit.iterations: expected a whole number");
-      }
-      fit_summary_.iterations = static_cast<int>(iterations);
-      const nlohmann::json& converged = Field(fit, "converged", "fit");
-      if (!converged.is_boolean()) throw Error("fit.converged: expected true or false");
-      fit_summary_.converged = converged.get<bool>();
-      fit_summary_.termination = String(Field(fit, "termination", "fit"), "fit.termination");
-      fit_summary_.rms_relative_eps =
-          Number(Field(fit, "rms_relative_eps", "fit"), "fit.rms_relative_eps");
-    }
-    if (fit.contains("selection")) {
-      const nlohmann::json& sel = fit.at("selection");
-      MethodSelection& selection = fit_summary_.selection;
-      selection.metric = String(Field(sel, "metric", "fit.selection"), "fit.selection.metric");
-      selection.reason = String(Field(sel, "reason", "fit.selection"), "fit.selection.reason");
-      const nlohmann::json& scores = Field(sel, "scores", "fit.selection");
-      if (!scores.is_array()) throw Error("fit.selection.scores: expected an array");
-      for (size_t i = 0; i < scores.size(); ++i) {
-        const std::string where = "fit.selection.scores[" + std::to_string(i) + "]";
-        MethodScore m;
-        m.method = String(Field(scores[i], "method", where), where + ".method");
-        m.folds = static_cast<int>(Number(Field(scores[i], "folds", where), where + ".folds"));
-        if (scores[i].contains("end_miss")) {
-          m.end_miss = Number(scores[i].at("end_miss"), where + ".end_miss");
-        }
-        if (scores[i].contains("error")) {
-          m.error = String(scores[i].at("error"), where + ".error");
-        } else {
-          m.mean = Number(Field(scores[i], "mean", where), where + ".mean");
-          m.max = Number(Field(scores[i], "max", where), where + ".max");
-        }
-        selection.scores.push_back(m);
-      }
-    }
-    fit_summary_.details = fit;
-    for (const char* key : {"method", "degree", "final_cost", "iterations", "converged",
-                            "termination", "rms_relative_eps", "selection"}) {
-      fit_summary_.details.erase(key);
-    }
-  }
+  if (doc.contains("fit")) ReadFitSummary(doc.at("fit"), &fit_summary_);
   warnings_.clear();
   if (doc.contains("warnings")) {
     const nlohmann::json& w = doc.at("warnings");
@@ -723,8 +745,7 @@ void CheckModelUsable(const AlloyModel& model) {
   }
 }
 
-std::unique_ptr<AlloyModel> ModelFromJson(const nlohmann::json& doc,
-                                          const std::string& source) {
+std::unique_ptr<AlloyModel> ModelFromJson(const nlohmann::json& doc, const std::string& source) {
   try {
     if (!doc.is_object()) throw Error("not a JSON object");
     const std::string format = String(Field(doc, "format", "model"), "format");

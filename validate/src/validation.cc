@@ -15,20 +15,18 @@
 #include "alloycolor/color/sample_error.h"
 #include "alloycolor/core/composition.h"
 #include "alloycolor/core/error.h"
-#include "alloycolor/core/parallel.h"
 #include "alloycolor/core/grid.h"
+#include "alloycolor/core/parallel.h"
 #include "alloycolor/core/spectrum.h"
 #include "alloycolor/core/text.h"
 #include "alloycolor/core/units.h"
 #include "alloycolor/model/optics.h"
 #include "report_metrics.h"
 
-
 namespace alloycolor::validate {
 namespace {
 
 constexpr double kSameX = 1e-9;
-
 
 // ---------------------------------------------------------------------------------------
 // Computation.
@@ -252,7 +250,8 @@ std::vector<SampleSplit> LeaveOneOutSplits(const Dataset& dataset) {
   RequireThreeCompositions(dataset);
   const std::vector<double> xs = DistinctCompositions(dataset);
   std::vector<SampleSplit> splits;
-  for (size_t c = 1; c + 1 < xs.size(); ++c) splits.push_back(SplitAtCompositions(dataset, {xs[c]}));
+  for (size_t c = 1; c + 1 < xs.size(); ++c)
+    splits.push_back(SplitAtCompositions(dataset, {xs[c]}));
   return splits;
 }
 
@@ -318,11 +317,11 @@ SampleSplit HoldoutSplit(const Dataset& dataset, const std::vector<std::string>&
   return split;
 }
 
-ValidationReport ComputeValidation(const Dataset& dataset,
-                                   const std::vector<SampleSplit>& splits,
-                                   const color::Colorimeter& colorimeter,
-                                   const ValidationOptions& options,
-                                   const ProgressCallback& progress) {
+namespace {
+
+// The report's account of what was validated: the data, the methods, the colour settings.
+ValidationReport DescribeValidation(const Dataset& dataset, const color::Colorimeter& colorimeter,
+                                    const ValidationOptions& options) {
   ValidationReport report;
   report.data = dataset.manifest_path;
   report.name = dataset.name;
@@ -337,8 +336,37 @@ ValidationReport ComputeValidation(const Dataset& dataset,
   report.observer_deg = colorimeter.observer_deg();
   report.colour_nm = {colorimeter.lambda_nm().front(), colorimeter.lambda_nm().back()};
   report.dataset_warnings = dataset.warnings;
+  return report;
+}
 
-  // Held-out samples and their measured colour.
+// Held-out sample i of split s, with its measured colour (or why it has none).
+HoldoutResult MeasuredHoldout(const Dataset& dataset, size_t i, size_t s,
+                              const color::Colorimeter& colorimeter,
+                              const ValidationOptions& options) {
+  const Sample& sample = dataset.samples[i];
+  HoldoutResult h;
+  h.x_atomic = sample.x_atomic;
+  h.x_given = sample.x_given;
+  h.file = sample.file;
+  h.path = sample.path;
+  h.sample = static_cast<int>(i);
+  h.replicate = SamplesAtComposition(dataset, sample.x_atomic).size() > 1;
+  h.split = static_cast<int>(s);
+  try {
+    const Colour c =
+        ColourAtAngles(colorimeter, color::IndexOnGrid(colorimeter, sample.nk), options.angles_deg);
+    h.lab = c.lab;
+    h.srgb8 = c.srgb8;
+  } catch (const Error& e) {
+    h.colour_note = e.what();
+  }
+  return h;
+}
+
+// Adds every split and its held-out samples, with their measured colour, to the report.
+void AddSplits(const Dataset& dataset, const std::vector<SampleSplit>& splits,
+               const color::Colorimeter& colorimeter, const ValidationOptions& options,
+               ValidationReport* report) {
   for (size_t s = 0; s < splits.size(); ++s) {
     for (size_t i : splits[s]) {
       if (i >= dataset.samples.size()) {
@@ -347,31 +375,25 @@ ValidationReport ComputeValidation(const Dataset& dataset,
       }
     }
     if (splits[s].empty()) throw Error("split " + std::to_string(s) + " holds out no sample");
-    report.splits.push_back(PrepareSplit(dataset, splits[s]));
+    report->splits.push_back(PrepareSplit(dataset, splits[s]));
     SampleSplit held = splits[s];
     std::sort(held.begin(), held.end());
     held.erase(std::unique(held.begin(), held.end()), held.end());
     for (size_t i : held) {
-      const Sample& sample = dataset.samples[i];
-      HoldoutResult h;
-      h.x_atomic = sample.x_atomic;
-      h.x_given = sample.x_given;
-      h.file = sample.file;
-      h.path = sample.path;
-      h.sample = static_cast<int>(i);
-      h.replicate = SamplesAtComposition(dataset, sample.x_atomic).size() > 1;
-      h.split = static_cast<int>(s);
-      try {
-        const Colour c = ColourAtAngles(colorimeter, color::IndexOnGrid(colorimeter, sample.nk),
-                                        options.angles_deg);
-        h.lab = c.lab;
-        h.srgb8 = c.srgb8;
-      } catch (const Error& e) {
-        h.colour_note = e.what();
-      }
-      report.holdouts.push_back(std::move(h));
+      report->holdouts.push_back(MeasuredHoldout(dataset, i, s, colorimeter, options));
     }
   }
+}
+
+}  // namespace
+
+ValidationReport ComputeValidation(const Dataset& dataset, const std::vector<SampleSplit>& splits,
+                                   const color::Colorimeter& colorimeter,
+                                   const ValidationOptions& options,
+                                   const ProgressCallback& progress) {
+  ValidationReport report = DescribeValidation(dataset, colorimeter, options);
+  // Held-out samples and their measured colour.
+  AddSplits(dataset, splits, colorimeter, options, &report);
 
   // Every method on every split; a method's splits run in parallel (ParallelTasks), each
   // task building its model and scoring its own held-out samples, so nothing is shared.
@@ -485,6 +507,5 @@ SigmaCoverage Coverage(const ValidationReport& report, const std::string& method
   }
   return s;
 }
-
 
 }  // namespace alloycolor::validate

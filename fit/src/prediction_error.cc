@@ -128,6 +128,35 @@ void AddMisfit(const Dataset& dataset, const AlloyModel& model, const std::vecto
   if (!error->misfit.empty() || !error->scatter.empty()) error->misfit_lambda_nm = grid;
 }
 
+// A fold's relative eps errors per wavelength, over its B (reference gap, end factor 1).
+struct FoldErrors {
+  Fold* fold = nullptr;
+  std::vector<double> over_bump;  // per held-out sample and wavelength, flattened
+  bool end = false;               // held out in an end interval of its training samples
+  std::vector<double> sum_sq;     // per wavelength: its part of the scale's sum of squares
+  int count = 0;                  // its held-out samples
+};
+
+// The end factor: how much larger the end folds' errors are than the interior ones'
+// (geometric means of their RMS), where the folds have both; at least 1.
+double EndFactor(const std::vector<FoldErrors>& errors) {
+  double log_sum[2] = {0, 0};
+  int folds_of[2] = {0, 0};
+  for (const FoldErrors& fe : errors) {
+    double sq = 0;
+    for (double v : fe.over_bump) sq += v * v;
+    const double rms = std::sqrt(sq / std::max<size_t>(fe.over_bump.size(), 1));
+    if (!(rms > 0)) continue;
+    log_sum[fe.end] += std::log(rms);
+    ++folds_of[fe.end];
+  }
+  if (folds_of[0] == 0 || folds_of[1] == 0) return 1;
+  // Shrunk towards 1 as few folds say little: weight k / (k + 2), k the smaller group.
+  const double k = std::min(folds_of[0], folds_of[1]);
+  return std::clamp(
+      std::exp(k / (k + 2) * (log_sum[1] / folds_of[1] - log_sum[0] / folds_of[0])), 1.0, 10.0);
+}
+
 // The interpolation error's scale from the folds (nothing where no fold could be used),
 // calibrated on their colour errors; sets each fold model's error too.
 PredictionError FoldPredictionError(const MethodInfo& method, std::vector<Fold>& fitted,
@@ -148,14 +177,6 @@ PredictionError FoldPredictionError(const MethodInfo& method, std::vector<Fold>&
   if (done.empty()) return {};
   const double reference_gap = gap_sum / done.size();
   const double gap_exponent = GapExponent(method, dataset);
-  // Each fold's relative eps errors per wavelength, over its B (reference gap, end factor 1).
-  struct FoldErrors {
-    Fold* fold = nullptr;
-    std::vector<double> over_bump;  // per held-out sample and wavelength, flattened
-    bool end = false;               // held out in an end interval of its training samples
-    std::vector<double> sum_sq;     // per wavelength: its part of sum_sq below
-    int count = 0;                  // its held-out samples
-  };
   std::vector<FoldErrors> errors;
   for (Fold* fp : done) {
     const Fold& f = *fp;
@@ -182,28 +203,7 @@ PredictionError FoldPredictionError(const MethodInfo& method, std::vector<Fold>&
     errors.push_back(std::move(fe));
   }
   if (errors.empty()) return {};
-  // The end factor: how much larger the end folds' errors are than the interior ones'
-  // (geometric means of their RMS), where the folds have both; at least 1.
-  double end_factor = 1;
-  {
-    double log_sum[2] = {0, 0};
-    int folds_of[2] = {0, 0};
-    for (const FoldErrors& fe : errors) {
-      double sq = 0;
-      for (double v : fe.over_bump) sq += v * v;
-      const double rms = std::sqrt(sq / std::max<size_t>(fe.over_bump.size(), 1));
-      if (!(rms > 0)) continue;
-      log_sum[fe.end] += std::log(rms);
-      ++folds_of[fe.end];
-    }
-    if (folds_of[0] > 0 && folds_of[1] > 0) {
-      // Shrunk towards 1 as few folds say little: weight k / (k + 2), k the smaller group.
-      const double k = std::min(folds_of[0], folds_of[1]);
-      end_factor = std::clamp(
-          std::exp(k / (k + 2) * (log_sum[1] / folds_of[1] - log_sum[0] / folds_of[0])), 1.0,
-          10.0);
-    }
-  }
+  const double end_factor = EndFactor(errors);
   // scale[j]^2: mean over the held-out samples of (relative error / B)^2.
   std::vector<double> sum_sq(grid.size(), 0.0);
   int count = 0;

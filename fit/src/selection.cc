@@ -344,6 +344,41 @@ double EndMiss(const AlloyModel& model, const Dataset& dataset, bool* misses) {
   return worst;
 }
 
+// Why auto chose what it chose, one line.
+std::string ChoiceReason(const MethodSelection& selection, const Choice& c,
+                         const std::vector<const MethodInfo*>& order) {
+  const MethodScore& chosen_score = selection.scores[c.chosen];
+  const MethodScore& best_score = selection.scores[c.best];
+  const std::string& chosen_name = order[c.chosen]->name;
+  const std::string& best_name = order[c.best]->name;
+  char reason[320];
+  if (c.rule.empty()) {
+    std::snprintf(reason, sizeof reason,
+                  "%s: lowest mean %s, %.4g over %d held-out samples",
+                  chosen_name.c_str(), selection.metric.c_str(), chosen_score.mean,
+                  chosen_score.folds);
+  } else if (c.rule == "one fold") {
+    std::snprintf(reason, sizeof reason,
+                  "%s: one fold (three compositions) compares the straight lines between the "
+                  "ends, not the curves through three samples; %s scored %.4g, %s %.4g",
+                  chosen_name.c_str(), chosen_name.c_str(), chosen_score.mean,
+                  best_name.c_str(), best_score.mean);
+  } else if (c.rule == "the ends' own samples") {
+    std::snprintf(reason, sizeof reason,
+                  "%s: mean %s %.4g over %d held-out samples, within the folds' tolerance of "
+                  "the lowest (%s, %.4g), the first in auto's order true to the end samples",
+                  chosen_name.c_str(), selection.metric.c_str(), chosen_score.mean,
+                  chosen_score.folds, best_name.c_str(), best_score.mean);
+  } else {
+    std::snprintf(reason, sizeof reason,
+                  "%s: mean %s %.4g over %d held-out samples, the first in auto's order "
+                  "within %s of the lowest (%s, %.4g)",
+                  chosen_name.c_str(), selection.metric.c_str(), chosen_score.mean,
+                  chosen_score.folds, c.rule.c_str(), best_name.c_str(), best_score.mean);
+  }
+  return reason;
+}
+
 }  // namespace
 
 std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings& settings) {
@@ -430,36 +465,7 @@ std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings&
   if (c.chosen == order.size()) {
     throw Error(dataset.manifest_path + ": auto: no method could be scored");
   }
-  const MethodScore& chosen_score = selection.scores[c.chosen];
-  const MethodScore& best_score = selection.scores[c.best];
-  const std::string& chosen_name = order[c.chosen]->name;
-  const std::string& best_name = order[c.best]->name;
-  char reason[320];
-  if (c.rule.empty()) {
-    std::snprintf(reason, sizeof reason,
-                  "%s: lowest mean %s, %.4g over %d held-out samples",
-                  chosen_name.c_str(), selection.metric.c_str(), chosen_score.mean,
-                  chosen_score.folds);
-  } else if (c.rule == "one fold") {
-    std::snprintf(reason, sizeof reason,
-                  "%s: one fold (three compositions) compares the straight lines between the "
-                  "ends, not the curves through three samples; %s scored %.4g, %s %.4g",
-                  chosen_name.c_str(), chosen_name.c_str(), chosen_score.mean,
-                  best_name.c_str(), best_score.mean);
-  } else if (c.rule == "the ends' own samples") {
-    std::snprintf(reason, sizeof reason,
-                  "%s: mean %s %.4g over %d held-out samples, within the folds' tolerance of "
-                  "the lowest (%s, %.4g), the first in auto's order true to the end samples",
-                  chosen_name.c_str(), selection.metric.c_str(), chosen_score.mean,
-                  chosen_score.folds, best_name.c_str(), best_score.mean);
-  } else {
-    std::snprintf(reason, sizeof reason,
-                  "%s: mean %s %.4g over %d held-out samples, the first in auto's order "
-                  "within %s of the lowest (%s, %.4g)",
-                  chosen_name.c_str(), selection.metric.c_str(), chosen_score.mean,
-                  chosen_score.folds, c.rule.c_str(), best_name.c_str(), best_score.mean);
-  }
-  selection.reason = reason;
+  selection.reason = ChoiceReason(selection, c, order);
   std::unique_ptr<AlloyModel> model = std::move(candidates[c.chosen].model);
   Report(settings.progress, "auto: " + selection.reason);
   FitSummary summary = model->fit_summary();

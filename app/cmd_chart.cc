@@ -5,9 +5,9 @@
 #include <filesystem>
 #include <iostream>
 
+#include "alloycolor/color/material_color.h"
 #include "alloycolor/core/error.h"
 #include "alloycolor/render/image.h"
-#include "alloycolor/color/material_color.h"
 #include "common.h"
 #include "report.h"
 

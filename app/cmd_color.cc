@@ -1,15 +1,15 @@
 // alloycolor color: the colour of a polished metal from measured n, k (--nk) or of an
 // alloy at any composition from a data set or a fitted model.
 #include <algorithm>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <iostream>
 #include <sstream>
 
-#include "alloycolor/core/error.h"
-#include "alloycolor/core/json.h"
-#include "alloycolor/core/io.h"
 #include "alloycolor/color/material_color.h"
+#include "alloycolor/core/error.h"
+#include "alloycolor/core/io.h"
+#include "alloycolor/core/json.h"
 #include "alloycolor/core/text.h"
 #include "common.h"
 
@@ -55,12 +55,13 @@ std::string CompositionLabel(const std::string& given, double x) {
 
 // Throws Error naming the composition when any printed figure is not finite.
 void RequireFinite(const color::ColorResult& c, double sigma, const std::string& where) {
-  const double values[] = {c.xyz.X,       c.xyz.Y,       c.xyz.Z,       c.lab.L, c.lab.a,
-                           c.lab.b,       c.paper_rgb.r, c.paper_rgb.g, c.paper_rgb.b, sigma};
+  const double values[] = {c.xyz.X, c.xyz.Y,       c.xyz.Z,       c.lab.L,       c.lab.a,
+                           c.lab.b, c.paper_rgb.r, c.paper_rgb.g, c.paper_rgb.b, sigma};
   for (const double v : values) {
     if (!std::isfinite(v)) {
-      throw Error(where + ": the colour is not finite (the model or the colour tables give "
-                          "NaN or infinity here)");
+      throw Error(where +
+                  ": the colour is not finite (the model or the colour tables give "
+                  "NaN or infinity here)");
     }
   }
 }
@@ -83,11 +84,11 @@ void Run(const ColorOptions& o) {
     msg << "--angle: " << o.angle_deg << " lies outside 0-90 degrees";
     throw Error(msg.str());
   }
-  nlohmann::json common = {{"illuminant", colorimeter.illuminant()},
-                           {"observer", o.observer},
-                           {"angle_deg", o.angle_deg},
-                           {"integrated_nm",
-                            {colorimeter.lambda_nm().front(), colorimeter.lambda_nm().back()}}};
+  nlohmann::json common = {
+      {"illuminant", colorimeter.illuminant()},
+      {"observer", o.observer},
+      {"angle_deg", o.angle_deg},
+      {"integrated_nm", {colorimeter.lambda_nm().front(), colorimeter.lambda_nm().back()}}};
   if (o.material.measured()) {
     const NkSpectrum nk = o.material.LoadMeasured(o.quiet);
     const color::ColorResult c = color::ColorFromXYZ(
@@ -125,9 +126,8 @@ void Run(const ColorOptions& o) {
   for (std::size_t i = 0; i < xs.size(); ++i) {
     const double x = xs[i];
     const color::ColorResult c = color::ColorFromXYZ(
-        colorimeter, color::MaterialXYZ(colorimeter,
-                                         color::IndexOnGrid(colorimeter, *model, x),
-                                         o.angle_deg));
+        colorimeter,
+        color::MaterialXYZ(colorimeter, color::IndexOnGrid(colorimeter, *model, x), o.angle_deg));
     const double sigma = color::DeltaE00Sigma(colorimeter, *model, x, o.angle_deg);
     RequireFinite(c, sigma, model->source() + ": composition x = " + FormatNumber(x));
     if (o.json) {
@@ -162,7 +162,8 @@ void RegisterColor(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "color",
       "Colour of a polished metal: from measured n, k (--nk FILE), or of an alloy at "
-      "composition(s) --x from a data set (--data, the method fit would choose by default) or a fitted "
+      "composition(s) --x from a data set (--data, the method fit would choose by default) or a "
+      "fitted "
       "model (--model). Spectral Fresnel reflectance integrated against the illuminant and "
       "observer; outputs XYZ (perfect reflector Y = 1), CIELAB (white = the illuminant's), "
       "linear and 8-bit sRGB (IEC 61966-2-1, no chromatic adaptation) and the paper's RGB.");

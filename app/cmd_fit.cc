@@ -8,13 +8,13 @@
 #include <map>
 
 #include "alloycolor/core/error.h"
+#include "alloycolor/core/grid.h"
 #include "alloycolor/core/io.h"
+#include "alloycolor/core/output.h"
+#include "alloycolor/core/parallel.h"
+#include "alloycolor/core/text.h"
 #include "alloycolor/fit/methods.h"
 #include "alloycolor/model/registry.h"
-#include "alloycolor/core/grid.h"
-#include "alloycolor/core/output.h"
-#include "alloycolor/core/text.h"
-#include "alloycolor/core/parallel.h"
 #include "common.h"
 
 namespace alloycolor::app {
@@ -45,7 +45,8 @@ void ReportChanges(const AlloyModel& old_model, const AlloyModel& model) {
   for (const auto& [file, s] : after) {
     auto it = before.find(file);
     if (it == before.end()) {
-      std::fprintf(stderr, "alloycolor: refit: added sample %s (x = %g)\n", file.c_str(), s->x_atomic);
+      std::fprintf(stderr, "alloycolor: refit: added sample %s (x = %g)\n", file.c_str(),
+                   s->x_atomic);
     } else if (it->second->checksum != s->checksum) {
       std::fprintf(stderr, "alloycolor: refit: sample %s changed (checksum %s -> %s)\n",
                    file.c_str(), it->second->checksum.c_str(), s->checksum.c_str());
@@ -53,7 +54,8 @@ void ReportChanges(const AlloyModel& old_model, const AlloyModel& model) {
   }
   for (const auto& [file, s] : before) {
     if (!after.count(file)) {
-      std::fprintf(stderr, "alloycolor: refit: removed sample %s (x = %g)\n", file.c_str(), s->x_atomic);
+      std::fprintf(stderr, "alloycolor: refit: removed sample %s (x = %g)\n", file.c_str(),
+                   s->x_atomic);
     }
   }
   if (old_model.fit_summary().present() && model.fit_summary().present()) {
@@ -93,7 +95,8 @@ void Run(const FitOptions& o) {
   namespace fs = std::filesystem;
   std::error_code ec;
   if (!o.from.empty() && fs::equivalent(o.from, o.out, ec)) {
-    throw Error("--out " + o.out + " is the --from model; write the refit elsewhere so the "
+    throw Error("--out " + o.out +
+                " is the --from model; write the refit elsewhere so the "
                 "old model is kept");
   }
   Dataset dataset = LoadDatasetArg(o.data_dir);
@@ -119,9 +122,9 @@ void Run(const FitOptions& o) {
     const double lo = o.lambda_from > 0 ? o.lambda_from : common.lo_nm;
     const double hi = o.lambda_to > 0 ? o.lambda_to : common.hi_nm;
     if ((hi - lo) / o.lambda_step > kMaxFitGridNodes) {
-      throw Error("--lambda-step " + FormatNumber(o.lambda_step) + " nm over " +
-                  FormatNumber(lo) + "-" + FormatNumber(hi) + " nm makes over " +
-                  std::to_string(kMaxFitGridNodes) + " grid nodes; give a larger step");
+      throw Error("--lambda-step " + FormatNumber(o.lambda_step) + " nm over " + FormatNumber(lo) +
+                  "-" + FormatNumber(hi) + " nm makes over " + std::to_string(kMaxFitGridNodes) +
+                  " grid nodes; give a larger step");
     }
   }
   const auto start = std::chrono::steady_clock::now();
@@ -157,7 +160,8 @@ void Run(const FitOptions& o) {
                    stats.selection.metric.c_str());
       for (const MethodScore& m : stats.selection.scores) {
         if (m.error.empty()) {
-          std::fprintf(stderr, "alloycolor:   %-11s mean %.4g, worst %.4g (%d folds; ends %.3g)%s\n",
+          std::fprintf(stderr,
+                       "alloycolor:   %-11s mean %.4g, worst %.4g (%d folds; ends %.3g)%s\n",
                        m.method.c_str(), m.mean, m.max, m.folds, m.end_miss,
                        m.method == model->method() ? "  <- chosen" : "");
         } else {
@@ -181,16 +185,16 @@ void Run(const FitOptions& o) {
                    seconds);
     }
     if (!model->in_sample().empty()) {
-      std::fprintf(stderr, "alloycolor: %s against its own samples (normal incidence, D65, 2 deg):\n",
+      std::fprintf(stderr,
+                   "alloycolor: %s against its own samples (normal incidence, D65, 2 deg):\n",
                    model->method().c_str());
       for (const InSampleError& r : model->in_sample()) {
         if (std::isfinite(r.delta_e00)) {
           std::fprintf(stderr, "alloycolor:   x = %-8.4g dE00 %-9.3g reflectance RMS %-9.3g %s\n",
-                       r.x_atomic, r.delta_e00, r.reflectance_rms,
-                       r.file.c_str());
+                       r.x_atomic, r.delta_e00, r.reflectance_rms, r.file.c_str());
         } else {
-          std::fprintf(stderr, "alloycolor:   x = %-8.4g reflectance RMS %-9.3g %s\n",
-                       r.x_atomic, r.reflectance_rms, r.file.c_str());
+          std::fprintf(stderr, "alloycolor:   x = %-8.4g reflectance RMS %-9.3g %s\n", r.x_atomic,
+                       r.reflectance_rms, r.file.c_str());
         }
       }
     }

@@ -66,8 +66,8 @@ std::string DistanceText(const color::Match& m, bool spectrum) {
 }
 
 void Run(const MatchCommandOptions& o) {
-  const int targets = !o.lab.empty() + !o.xyz.empty() + !o.hex.empty() + !o.reflectance.empty() +
-                      !o.nk.empty();
+  const int targets =
+      !o.lab.empty() + !o.xyz.empty() + !o.hex.empty() + !o.reflectance.empty() + !o.nk.empty();
   if (targets != 1) {
     throw Error("give exactly one target: --lab, --xyz, --hex, --reflectance or --nk");
   }
@@ -84,8 +84,8 @@ void Run(const MatchCommandOptions& o) {
   if (!o.lab.empty()) {
     const std::vector<double> v = Three(o.lab, "--lab");
     target = {v[0], v[1], v[2]};
-    target_text = "L*a*b* " + FormatNumber(v[0]) + "," + FormatNumber(v[1]) + "," +
-                  FormatNumber(v[2]);
+    target_text =
+        "L*a*b* " + FormatNumber(v[0]) + "," + FormatNumber(v[1]) + "," + FormatNumber(v[2]);
   } else if (!o.xyz.empty()) {
     const std::vector<double> v = Three(o.xyz, "--xyz");
     target = color::LabFromTargetXYZ(colorimeter, {v[0], v[1], v[2]});
@@ -126,8 +126,8 @@ void Run(const MatchCommandOptions& o) {
   const AlloySystem& system = model->system();
   const std::string verdict =
       reachable ? "reachable with " + system.Name()
-                : "not reachable with " + system.Name() + ": the closest is x = " +
-                      DescribeComposition(best.x_atomic, system) + ", " +
+                : "not reachable with " + system.Name() +
+                      ": the closest is x = " + DescribeComposition(best.x_atomic, system) + ", " +
                       DistanceText(best, is_spectrum) + " left";
   if (o.json) {
     nlohmann::json rows = nlohmann::json::array();
@@ -169,7 +169,8 @@ void Run(const MatchCommandOptions& o) {
           (best.at_range_end ? " (at the end of the model's range)" : "") + "\n";
   const std::string margin_text = is_spectrum ? FormatNumber(o.margin) + " % reflectance RMS"
                                               : "dE00 " + FormatNumber(o.margin);
-  if (matches.size() == 1) text += "no other local minimum within " + margin_text + " of the best\n";
+  if (matches.size() == 1)
+    text += "no other local minimum within " + margin_text + " of the best\n";
   if (matches.size() > 1) {
     text += "other local minima within " + margin_text + " of the best:\n";
     for (size_t i = 1; i < matches.size(); ++i) {

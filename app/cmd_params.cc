@@ -23,7 +23,8 @@ struct ParamsOptions {
 
 nlohmann::json ToJson(const ParameterTable::Quantity& q) {
   if (!std::isfinite(q.value)) return nullptr;
-  return {{"value", q.value}, {"sigma", std::isfinite(q.sigma) ? nlohmann::json(q.sigma) : nullptr}};
+  return {{"value", q.value},
+          {"sigma", std::isfinite(q.sigma) ? nlohmann::json(q.sigma) : nullptr}};
 }
 
 std::string Text(const ParameterTable::Quantity& q, bool with_sigma) {
@@ -45,8 +46,8 @@ std::string ElementsLine(const AlloySystem& system) {
          << (e->valence_conventional ? " (conventional: no free-electron valence in Ashcroft & "
                                        "Mermin Table 1.1; m* scales with it)"
                                      : "")
-         << ", rho = " << e->density_g_cm3
-         << " g/cm3, M = " << e->atomic_mass << " g/mol" << (e == &system.a ? "; " : "");
+         << ", rho = " << e->density_g_cm3 << " g/cm3, M = " << e->atomic_mass << " g/mol"
+         << (e == &system.a ? "; " : "");
   }
   return line.str();
 }
@@ -65,7 +66,8 @@ void PrintTable(const std::vector<std::string>& header,
   auto print = [&](const std::vector<std::string>& cells) {
     std::string line;
     for (size_t c = 0; c < cells.size(); ++c) {
-      line += cells[c] + std::string(width[c] - width_of(cells[c]) + (c + 1 < cells.size() ? 2 : 0), ' ');
+      line += cells[c] +
+              std::string(width[c] - width_of(cells[c]) + (c + 1 < cells.size() ? 2 : 0), ' ');
     }
     while (!line.empty() && line.back() == ' ') line.pop_back();
     *out << line << "\n";
@@ -96,9 +98,11 @@ void Run(const ParamsOptions& o) {
   if (o.format == "json") {
     nlohmann::json rows = nlohmann::json::array();
     for (size_t i = 0; i < table.rows.size(); ++i) {
-      nlohmann::json row = {{"x", table.x_atomic[i]},
-                            {"x_weight", WeightFromAtomicFraction(table.x_atomic[i], model->system())}};
-      for (size_t c = 0; c < table.columns.size(); ++c) row[table.columns[c]] = ToJson(table.rows[i][c]);
+      nlohmann::json row = {
+          {"x", table.x_atomic[i]},
+          {"x_weight", WeightFromAtomicFraction(table.x_atomic[i], model->system())}};
+      for (size_t c = 0; c < table.columns.size(); ++c)
+        row[table.columns[c]] = ToJson(table.rows[i][c]);
       rows.push_back(row);
     }
     nlohmann::json notes = table.notes;
@@ -113,7 +117,7 @@ void Run(const ParamsOptions& o) {
   }
   std::ostringstream text;
   text << "# " << model->method() << " model of " << model->system().Name()
-            << "; x = atomic fraction of " << model->system().a.symbol << "\n";
+       << "; x = atomic fraction of " << model->system().a.symbol << "\n";
   for (const std::string& note : table.notes) text << "# " << note << "\n";
   text << "# " << ElementsLine(model->system()) << "\n";
   std::vector<std::string> header = {"x"};

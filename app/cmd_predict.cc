@@ -5,11 +5,11 @@
 #include <sstream>
 
 #include "alloycolor/core/error.h"
-#include "alloycolor/core/json.h"
 #include "alloycolor/core/io.h"
-#include "alloycolor/model/optics.h"
+#include "alloycolor/core/json.h"
 #include "alloycolor/core/spectrum.h"
 #include "alloycolor/core/text.h"
+#include "alloycolor/model/optics.h"
 #include "common.h"
 
 namespace alloycolor::app {
@@ -75,8 +75,9 @@ void Run(const PredictOptions& o, CLI::App* cmd) {
   }
   // Finite or an error: never a NaN or an infinity in the output.
   for (size_t i = 0; i < grid.size(); ++i) {
-    const bool finite = std::isfinite(index[i].real()) && std::isfinite(index[i].imag()) &&
-                        (n_sigma.empty() || (std::isfinite(n_sigma[i]) && std::isfinite(k_sigma[i])));
+    const bool finite =
+        std::isfinite(index[i].real()) && std::isfinite(index[i].imag()) &&
+        (n_sigma.empty() || (std::isfinite(n_sigma[i]) && std::isfinite(k_sigma[i])));
     if (!finite) {
       throw Error(model->source() + ": x = " + FormatNumber(x) + ", " + FormatNumber(grid[i]) +
                   " nm: the " + model->method() + " model gives no finite n, k" +

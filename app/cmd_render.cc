@@ -8,11 +8,11 @@
 #include <string>
 #include <vector>
 
+#include "alloycolor/color/material_color.h"
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/io.h"
 #include "alloycolor/core/text.h"
 #include "alloycolor/render/image.h"
-#include "alloycolor/color/material_color.h"
 #include "alloycolor/render/renderer.h"
 #include "common.h"
 
@@ -102,7 +102,7 @@ std::vector<Material> LoadMaterials(const RenderCommandOptions& o,
   }
   *description = model->system().Name() + ", " + model->method() + " model" +
                  (o.material.source.model_path.empty() ? " from data " + o.material.source.data_dir
-                                              : " from " + o.material.source.model_path) +
+                                                       : " from " + o.material.source.model_path) +
                  "; x = atomic fraction of " + model->system().a.symbol + ": " + o.material.x_text;
   return materials;
 }

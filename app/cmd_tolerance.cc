@@ -86,8 +86,8 @@ void Run(const ToleranceCommandOptions& o) {
     return;
   }
   char line[256];
-  std::string text = system.Name() + ", " + model->method() + " model at x = " +
-                     DescribeComposition(x, system) + "\n";
+  std::string text = system.Name() + ", " + model->method() +
+                     " model at x = " + DescribeComposition(x, system) + "\n";
   std::snprintf(line, sizeof line,
                 "colour within dE00 %g of its own (%s) for x in [%.5f, %.5f]: %+.3f / %+.3f at%%\n",
                 o.de00, conditions.c_str(), w.x_low, w.x_high, 100 * (w.x_low - x),
@@ -97,7 +97,8 @@ void Run(const ToleranceCommandOptions& o) {
           (w.clipped_low ? ", clipped at the model's range" : ", set by " + w.limit_low) + "\n";
   text += "  high end: " + DescribeComposition(w.x_high, system) +
           (w.clipped_high ? ", clipped at the model's range" : ", set by " + w.limit_high) + "\n";
-  std::snprintf(line, sizeof line, "colour changes by %.3g dE00 per at%% at x (the fastest of %s)\n",
+  std::snprintf(line, sizeof line,
+                "colour changes by %.3g dE00 per at%% at x (the fastest of %s)\n",
                 w.de00_per_x / 100.0, conditions.c_str());
   text += line;
   std::cout << text;

@@ -1,21 +1,21 @@
 // alloycolor validate: refit every method without held-out samples, predict them and write
 // a validation report (report.json and a self-contained report.html); see report.h.
 #include <algorithm>
-#include <cstdarg>
 #include <chrono>
 #include <cmath>
+#include <cstdarg>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <sstream>
 
 #include "alloycolor/core/error.h"
-#include "alloycolor/core/json.h"
 #include "alloycolor/core/io.h"
+#include "alloycolor/core/json.h"
 #include "alloycolor/core/parallel.h"
-#include "common.h"
 #include "alloycolor/fit/methods.h"
 #include "alloycolor/model/registry.h"
+#include "common.h"
 #include "report.h"
 
 namespace alloycolor::app {
@@ -155,7 +155,10 @@ std::string SummaryText(const nlohmann::json& report) {
   }
   for (const std::string& angle : angles) {
     for (const char* key : {"within_1_sigma", "within_2_sigma"}) {
-      Appendf(&text, "%-18s", (std::string(key == std::string("within_1_sigma") ? "in_1sigma_" : "in_2sigma_") + angle).c_str());
+      Appendf(
+          &text, "%-18s",
+          (std::string(key == std::string("within_1_sigma") ? "in_1sigma_" : "in_2sigma_") + angle)
+              .c_str());
       for (const auto& m : methods) {
         const std::string name = m.get<std::string>();
         char buf[48];
@@ -194,7 +197,8 @@ std::string SummaryText(const nlohmann::json& report) {
     }
   }
   if (!report["delta_e00_available"].get<bool>()) {
-    Appendf(&text, "delta_e00: %s\n", report["metric_ranges"]["delta_e00"].get<std::string>().c_str());
+    Appendf(&text, "delta_e00: %s\n",
+            report["metric_ranges"]["delta_e00"].get<std::string>().c_str());
   }
   return text;
 }

@@ -10,12 +10,12 @@
 #include <iostream>
 #include <sstream>
 
-#include "alloycolor/fit/methods.h"
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/io.h"
 #include "alloycolor/core/output.h"
 #include "alloycolor/core/setting.h"
 #include "alloycolor/core/text.h"
+#include "alloycolor/fit/methods.h"
 #include "alloycolor/model/registry.h"
 
 namespace alloycolor::app {
@@ -259,7 +259,8 @@ void FlushWarnings() {
 
 std::string MethodsHelp() {
   std::string text;
-  for (const MethodInfo& m : Methods()) text += (text.empty() ? "" : "; ") + m.name + ": " + m.summary;
+  for (const MethodInfo& m : Methods())
+    text += (text.empty() ? "" : "; ") + m.name + ": " + m.summary;
   return text;
 }
 

@@ -3,20 +3,19 @@
 #ifndef ALLOYCOLOR_APP_COMMON_H_
 #define ALLOYCOLOR_APP_COMMON_H_
 
+#include <CLI/CLI.hpp>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
-#include <CLI/CLI.hpp>
-#include <nlohmann/json.hpp>
-
-#include "alloycolor/model/alloy_model.h"
+#include "alloycolor/color/colorimetry.h"
 #include "alloycolor/core/dataset.h"
 #include "alloycolor/core/output.h"
 #include "alloycolor/core/progress.h"
 #include "alloycolor/core/setting.h"
 #include "alloycolor/core/spectrum.h"
-#include "alloycolor/color/colorimetry.h"
+#include "alloycolor/model/alloy_model.h"
 #include "output_guard.h"
 
 namespace alloycolor::app {
@@ -96,8 +95,7 @@ struct MaterialSource {
   std::string columns;  // --columns N,K: which columns of a multi-sample text file
   ModelSource source;
   std::string x_text;
-  void AddOptions(CLI::App* cmd, const std::string& x_help,
-                  const std::string& x_names = "--x");
+  void AddOptions(CLI::App* cmd, const std::string& x_help, const std::string& x_names = "--x");
   bool measured() const { return !nk_file.empty(); }
   // The --nk spectrum (its repairs queued as warnings unless quiet); throws Error when
   // --model, --data or --x are given too.

@@ -9,14 +9,13 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <new>
-#include <string>
-
-#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #if __has_include(<glog/logging.h>)
 #include <glog/logging.h>  // Ceres logs through glog
@@ -94,13 +93,12 @@ int main(int argc, char** argv) {
   FLAGS_minloglevel = 3;  // FATAL only
   FLAGS_stderrthreshold = 3;
 #endif
-  CLI::App app{
-      "alloycolor " ALLOYCOLOR_VERSION
-      ": optical constants, reflectance and colour of binary metal alloys at any "
-      "composition, from measurements at a few compositions.\n"
-      "Compositions are atomic fractions of the system's first element (0.75), or "
-      "75at%, 75wt%, or a karat for gold alloys (18k).\n"
-      "Bundled data sets: Au-Ag, Cu-Zn, Nb-Sn (give --data NAME or a folder/manifest)."};
+  CLI::App app{"alloycolor " ALLOYCOLOR_VERSION
+               ": optical constants, reflectance and colour of binary metal alloys at any "
+               "composition, from measurements at a few compositions.\n"
+               "Compositions are atomic fractions of the system's first element (0.75), or "
+               "75at%, 75wt%, or a karat for gold alloys (18k).\n"
+               "Bundled data sets: Au-Ag, Cu-Zn, Nb-Sn (give --data NAME or a folder/manifest)."};
   app.require_subcommand(1);
   app.set_version_flag("--version", ALLOYCOLOR_VERSION);
   app.footer("Run 'alloycolor COMMAND --help' for a command's options.");

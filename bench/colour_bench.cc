@@ -22,16 +22,16 @@
 #include <string>
 #include <vector>
 
-#include "alloycolor/fit/physical_fit.h"
-#include "alloycolor/fit/smooth_fit.h"
-#include "alloycolor/core/dataset.h"
-#include "alloycolor/model/sample_models.h"
-#include "alloycolor/model/smooth_model.h"
-#include "alloycolor/core/units.h"
 #include "alloycolor/color/colorimetry.h"
 #include "alloycolor/color/material_color.h"
 #include "alloycolor/color/sweep.h"
+#include "alloycolor/core/dataset.h"
+#include "alloycolor/core/units.h"
+#include "alloycolor/fit/physical_fit.h"
+#include "alloycolor/fit/smooth_fit.h"
 #include "alloycolor/model/interpolation.h"
+#include "alloycolor/model/sample_models.h"
+#include "alloycolor/model/smooth_model.h"
 
 namespace alloycolor {
 namespace {
@@ -84,7 +84,7 @@ std::vector<double> HeldGrid(const color::Colorimeter& colorimeter, const AlloyM
 }
 
 color::XYZ NaiveXYZFromEps(const color::Colorimeter& colorimeter,
-                            const std::vector<std::complex<double>>& eps) {
+                           const std::vector<std::complex<double>>& eps) {
   color::XYZ xyz{0, 0, 0};
   for (size_t i = 0; i < eps.size(); ++i) {
     const std::complex<double> n = std::sqrt(eps[i]);
@@ -152,7 +152,7 @@ void BM_Library(benchmark::State& state) {
 void BM_SweepExact(benchmark::State& state) {
   const Fixture& f = Shared();
   const color::ColorSweep sweep(f.colorimeter, f.Model(state.range(0)),
-                                 static_cast<double>(state.range(1)));
+                                static_cast<double>(state.range(1)));
   int64_t i = 0;
   for (auto _ : state) {
     benchmark::DoNotOptimize(Finish(f.colorimeter, sweep.ExactXYZ(SweepX(i++))));
@@ -163,7 +163,7 @@ void BM_SweepExact(benchmark::State& state) {
 void BM_SweepTable(benchmark::State& state) {
   const Fixture& f = Shared();
   color::ColorSweep sweep(f.colorimeter, f.Model(state.range(0)),
-                           static_cast<double>(state.range(1)));
+                          static_cast<double>(state.range(1)));
   if (!sweep.BuildTable(0.0, 1.0)) {
     state.SkipWithError("no table within the tolerance");
     return;

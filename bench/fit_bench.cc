@@ -17,10 +17,10 @@
 #include <vector>
 
 #include "alloycolor/color/colorimetry.h"
-#include "alloycolor/fit/methods.h"
-#include "alloycolor/fit/smooth_fit.h"
 #include "alloycolor/core/dataset.h"
 #include "alloycolor/core/spectrum.h"
+#include "alloycolor/fit/methods.h"
+#include "alloycolor/fit/smooth_fit.h"
 
 namespace alloycolor {
 namespace {
@@ -105,10 +105,7 @@ BENCHMARK(BM_FitSamples)
     ->Unit(benchmark::kMillisecond)
     ->Repetitions(5)
     ->ReportAggregatesOnly();
-BENCHMARK(BM_FitDefault)
-    ->Unit(benchmark::kMillisecond)
-    ->Repetitions(5)
-    ->ReportAggregatesOnly();
+BENCHMARK(BM_FitDefault)->Unit(benchmark::kMillisecond)->Repetitions(5)->ReportAggregatesOnly();
 BENCHMARK(BM_BuildModel)
     ->ArgName("method")
     ->Arg(0)

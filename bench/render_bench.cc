@@ -15,10 +15,10 @@
 #include <thread>
 #include <vector>
 
-#include "alloycolor/core/io.h"
 #include "alloycolor/color/colorimetry.h"
-#include "alloycolor/render/image.h"
 #include "alloycolor/color/material_color.h"
+#include "alloycolor/core/io.h"
+#include "alloycolor/render/image.h"
 #include "alloycolor/render/renderer.h"
 #include "alloycolor/render/shading.h"
 #include "reference_renderer.h"

@@ -21,11 +21,11 @@
 #include <string>
 #include <vector>
 
-#include "alloycolor/model/alloy_model.h"
-#include "alloycolor/core/error.h"
-#include "alloycolor/core/spectrum.h"
 #include "alloycolor/color/colorimetry.h"
 #include "alloycolor/color/material_color.h"
+#include "alloycolor/core/error.h"
+#include "alloycolor/core/spectrum.h"
+#include "alloycolor/model/alloy_model.h"
 
 namespace alloycolor::fuzz {
 

@@ -2,11 +2,10 @@
 // bad input giving one line naming the culprit and exit status 2.
 #include <gtest/gtest.h>
 
-#include <nlohmann/json.hpp>
-
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "test_util.h"
 
@@ -23,7 +22,8 @@ void ExpectCleanError(const std::vector<std::string>& args,
   EXPECT_EQ(CountLines(r.err), 1) << cmd << "\n" << r.err;
   EXPECT_TRUE(r.out.empty()) << cmd << "\n" << r.out;
   for (const auto& needle : needles) {
-    EXPECT_NE(r.err.find(needle), std::string::npos) << cmd << ": '" << needle << "' not in " << r.err;
+    EXPECT_NE(r.err.find(needle), std::string::npos)
+        << cmd << ": '" << needle << "' not in " << r.err;
   }
 }
 
@@ -57,8 +57,8 @@ TEST(Cli, PerfectReflectorIsTheIlluminantsWhite) {
   EXPECT_NEAR(c["XYZ"][2].get<double>(), 1.08883, 1e-3);
   for (int i = 0; i < 3; ++i) EXPECT_NEAR(c["linear_srgb"][i].get<double>(), 1.0, 2e-3);
   EXPECT_NEAR(c["Lab"][0].get<double>(), 100.0, 1e-9);
-  c = ColorJson({"--nk", dir + "/mirror.csv", "--illuminant", "A", "--observer", "10",
-                 "--angle", "60"});
+  c = ColorJson(
+      {"--nk", dir + "/mirror.csv", "--illuminant", "A", "--observer", "10", "--angle", "60"});
   EXPECT_NEAR(c["XYZ"][0].get<double>(), 1.11144, 1e-3);  // ASTM E308 A, 10 degrees
   EXPECT_NEAR(c["XYZ"][2].get<double>(), 0.35200, 1e-3);
 }
@@ -71,7 +71,8 @@ TEST(Cli, GrazingIncidenceGoesWhite) {
 
 TEST(Cli, PaperBaselineAtAKnownSampleIsThatSample) {
   const nlohmann::json direct = ColorJson({"--nk", DataDir() + "/Au-Ag/Rioux-Au50Ag50.yml"});
-  const nlohmann::json paper = ColorJson({"--data", DataDir() + "/Au-Ag", "--method", "paper", "--x", "0.5"});
+  const nlohmann::json paper =
+      ColorJson({"--data", DataDir() + "/Au-Ag", "--method", "paper", "--x", "0.5"});
   for (int i = 0; i < 3; ++i) {
     EXPECT_NEAR(paper["XYZ"][i].get<double>(), direct["XYZ"][i].get<double>(), 1e-9);
   }
@@ -98,9 +99,7 @@ class BadInput : public ::testing::Test {
     WriteText(dir_ + "/" + name, text);
     return dir_ + "/" + name;
   }
-  std::string Manifest(const std::string& body) {
-    return File("dataset.json", body);
-  }
+  std::string Manifest(const std::string& body) { return File("dataset.json", body); }
   std::string dir_;
 };
 
@@ -110,21 +109,24 @@ TEST_F(BadInput, OpticalConstantFiles) {
   ExpectCleanError({"color", "--nk", File("word.csv", "lambda_nm,n,k\n400,1,2\n500,abc,2\n")},
                    {"word.csv", ":3", "abc"});
   ExpectCleanError({"color", "--nk", File("one.csv", "lambda_nm,n,k\n400,1,2\n")}, {"one.csv"});
-  ExpectCleanError({"color", "--nk", File("order.csv", "lambda_nm,n,k\n500,1,2\n400,1,2\n450,1,2\n")},
-                   {"order.csv", ":4"});
+  ExpectCleanError(
+      {"color", "--nk", File("order.csv", "lambda_nm,n,k\n500,1,2\n400,1,2\n450,1,2\n")},
+      {"order.csv", ":4"});
   ExpectCleanError({"color", "--nk", File("negk.csv", "lambda_nm,n,k\n400,1,2\n500,1,-2\n")},
                    {"negk.csv", ":3"});
   ExpectCleanError({"color", "--nk", File("nan.csv", "lambda_nm,n,k\n400,1,2\n500,nan,2\n")},
                    {"nan.csv", ":3"});
   ExpectCleanError({"color", "--nk", File("header.csv", "wavelength,n\n400,1\n500,1\n")},
                    {"header.csv"});
-  ExpectCleanError({"color", "--nk", File("bad.yml",
-                                          "DATA:\n  - type: tabulated nk\n    data: |\n"
-                                          "        0.4 1.0 2.0\n        0.5 x 2.0\n")},
+  ExpectCleanError({"color", "--nk",
+                    File("bad.yml",
+                         "DATA:\n  - type: tabulated nk\n    data: |\n"
+                         "        0.4 1.0 2.0\n        0.5 x 2.0\n")},
                    {"bad.yml", ":5"});
-  ExpectCleanError({"color", "--nk", File("formula.yml",
-                                          "DATA:\n  - type: formula 2\n"
-                                          "    coefficients: 0 1 2\n")},
+  ExpectCleanError({"color", "--nk",
+                    File("formula.yml",
+                         "DATA:\n  - type: formula 2\n"
+                         "    coefficients: 0 1 2\n")},
                    {"formula.yml", "formula"});
   ExpectCleanError({"color", "--nk", File("binary.yml", std::string("\x00\x01\xff\xfe", 4))},
                    {"binary.yml"});
@@ -138,27 +140,27 @@ TEST_F(BadInput, Manifests) {
   const std::string ag = DataDir() + "/Au-Ag/Rioux-Au0Ag100.yml";
   auto manifest = [&](const std::string& a, const std::string& samples) {
     return Manifest(R"({"system": {"a": ")" + a +
-                    R"(", "b": "Ag"}, "composition": "atomic_fraction_a", "samples": [)" +
-                    samples + "]}");
+                    R"(", "b": "Ag"}, "composition": "atomic_fraction_a", "samples": [)" + samples +
+                    "]}");
   };
-  ExpectCleanError({"color", "--data", manifest("Xx", R"({"x": 0, "file": ")" + ag + R"("})"),
-                    "--x", "0.5"},
-                   {"dataset.json", "Xx"});
-  ExpectCleanError({"color", "--data",
-                    manifest("Au", R"({"x": 1.5, "file": ")" + au + R"("}, {"x": 0, "file": ")" +
-                                       ag + R"("})"),
-                    "--x", "0.5"},
-                   {"dataset.json", "1.5"});
+  ExpectCleanError(
+      {"color", "--data", manifest("Xx", R"({"x": 0, "file": ")" + ag + R"("})"), "--x", "0.5"},
+      {"dataset.json", "Xx"});
+  ExpectCleanError(
+      {"color", "--data",
+       manifest("Au", R"({"x": 1.5, "file": ")" + au + R"("}, {"x": 0, "file": ")" + ag + R"("})"),
+       "--x", "0.5"},
+      {"dataset.json", "1.5"});
   ExpectCleanError({"color", "--data",
                     manifest("Au", R"({"x": 0.5, "file": ")" + au + R"("}, {"x": 0.5, "file": ")" +
                                        ag + R"("})"),
                     "--x", "0.5"},
                    {"dataset.json", "Rioux-Au100Ag0.yml", "Rioux-Au0Ag100.yml"});
-  ExpectCleanError({"color", "--data",
-                    manifest("Au", R"({"x": 1, "file": "nowhere.yml"}, {"x": 0, "file": ")" + ag +
-                                       R"("})"),
-                    "--x", "0.5"},
-                   {"nowhere.yml"});
+  ExpectCleanError(
+      {"color", "--data",
+       manifest("Au", R"({"x": 1, "file": "nowhere.yml"}, {"x": 0, "file": ")" + ag + R"("})"),
+       "--x", "0.5"},
+      {"nowhere.yml"});
   ExpectCleanError({"color", "--data", File("broken.json", "{\"system\": "), "--x", "0.5"},
                    {"broken.json"});
   ExpectCleanError({"color", "--data", dir_ + "/none", "--x", "0.5"}, {"none"});
@@ -220,14 +222,14 @@ TEST_F(BadInput, FitExcludesBySampleAsTheManifestNamesIt) {
 
 TEST_F(BadInput, ModelFilesAndRefit) {
   const std::string model = dir_ + "/model.json";
-  RunResult r = RunProgram({"fit", "--data", "Au-Ag", "--method", "smooth", "--exclude",
-                            "0.3,0.7", "--degree", "3", "--out", model, "--quiet"});
+  RunResult r = RunProgram({"fit", "--data", "Au-Ag", "--method", "smooth", "--exclude", "0.3,0.7",
+                            "--degree", "3", "--out", model, "--quiet"});
   ASSERT_EQ(r.status, 0) << r.err;
   std::ifstream in(model);
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  ExpectCleanError({"predict", "--model", File("cut.json", text.substr(0, text.size() / 2)),
-                    "--x", "0.5"},
-                   {"cut.json"});
+  ExpectCleanError(
+      {"predict", "--model", File("cut.json", text.substr(0, text.size() / 2)), "--x", "0.5"},
+      {"cut.json"});
   nlohmann::json doc = nlohmann::json::parse(text);
   doc["version"] = 7;
   ExpectCleanError({"predict", "--model", File("v7.json", doc.dump()), "--x", "0.5"},
@@ -390,10 +392,12 @@ TEST_F(BadInput, OutputNamesTheCommandDoesNotWriteAreRefused) {
 
 TEST(Cli, PredictWritesTheModelsIndex) {
   const std::string dir = MakeTempDir();
-  ASSERT_EQ(RunProgram({"fit", "--data", "Au-Ag", "--method", "paper", "--out",
-                        dir + "/paper.json", "--quiet"}).status, 0);
-  const RunResult r = RunProgram({"predict", "--model", dir + "/paper.json", "--x", "0.5",
-                                  "--from", "400", "--to", "410", "--step", "10"});
+  ASSERT_EQ(RunProgram({"fit", "--data", "Au-Ag", "--method", "paper", "--out", dir + "/paper.json",
+                        "--quiet"})
+                .status,
+            0);
+  const RunResult r = RunProgram({"predict", "--model", dir + "/paper.json", "--x", "0.5", "--from",
+                                  "400", "--to", "410", "--step", "10"});
   ASSERT_EQ(r.status, 0) << r.err;
   // The paper model at a known sample is the sample: Rioux-Au50Ag50.yml rows 0.400, 0.410.
   ASSERT_EQ(CountLines(r.out), 3);

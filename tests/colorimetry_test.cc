@@ -64,8 +64,7 @@ TEST(DeltaE00Test, MatchesAllSharmaWuDalalPairs) {
   ASSERT_EQ(SharmaPairs().size(), 34u);
   for (std::size_t i = 0; i < SharmaPairs().size(); ++i) {
     const SharmaPair& pair = SharmaPairs()[i];
-    EXPECT_NEAR(DeltaE00(pair.lab1, pair.lab2), pair.delta_e00,
-                kSharmaTolerance)
+    EXPECT_NEAR(DeltaE00(pair.lab1, pair.lab2), pair.delta_e00, kSharmaTolerance)
         << "Sharma pair " << i + 1;
   }
 }
@@ -73,8 +72,7 @@ TEST(DeltaE00Test, MatchesAllSharmaWuDalalPairs) {
 TEST(DeltaE00Test, IsSymmetric) {
   for (std::size_t i = 0; i < SharmaPairs().size(); ++i) {
     const SharmaPair& pair = SharmaPairs()[i];
-    EXPECT_DOUBLE_EQ(DeltaE00(pair.lab1, pair.lab2),
-                     DeltaE00(pair.lab2, pair.lab1))
+    EXPECT_DOUBLE_EQ(DeltaE00(pair.lab1, pair.lab2), DeltaE00(pair.lab2, pair.lab1))
         << "Sharma pair " << i + 1;
   }
 }
@@ -103,12 +101,10 @@ struct WhitePoint {
 
 // ASTM E308 white points (1 nm tables), Y = 100 scaled to Y = 1.
 const WhitePoint kAstmWhitePoints[] = {
-    {"A", 2, 1.09850, 0.35585},    {"C", 2, 0.98074, 1.18232},
-    {"D50", 2, 0.96422, 0.82521},  {"D65", 2, 0.95047, 1.08883},
-    {"E", 2, 1.00000, 1.00000},    {"F2", 2, 0.99186, 0.67393},
-    {"F11", 2, 1.00962, 0.64350},  {"A", 10, 1.11144, 0.35200},
-    {"C", 10, 0.97285, 1.16145},   {"D50", 10, 0.96720, 0.81427},
-    {"D65", 10, 0.94811, 1.07304}, {"E", 10, 1.00000, 1.00000},
+    {"A", 2, 1.09850, 0.35585},    {"C", 2, 0.98074, 1.18232},    {"D50", 2, 0.96422, 0.82521},
+    {"D65", 2, 0.95047, 1.08883},  {"E", 2, 1.00000, 1.00000},    {"F2", 2, 0.99186, 0.67393},
+    {"F11", 2, 1.00962, 0.64350},  {"A", 10, 1.11144, 0.35200},   {"C", 10, 0.97285, 1.16145},
+    {"D50", 10, 0.96720, 0.81427}, {"D65", 10, 0.94811, 1.07304}, {"E", 10, 1.00000, 1.00000},
     {"F2", 10, 1.03279, 0.69027},  {"F11", 10, 1.03863, 0.65607},
 };
 
@@ -119,10 +115,10 @@ constexpr double kWhitePointTolerance = 1e-3;
 
 TEST(ColorimeterTest, PerfectReflectorMatchesAstmWhitePoints) {
   for (const WhitePoint& expected : kAstmWhitePoints) {
-    SCOPED_TRACE(std::string(expected.illuminant) + " " +
-                 std::to_string(expected.observer_deg) + " deg");
-    const Colorimeter colorimeter = Colorimeter::Load(
-        DataDir(), expected.illuminant, expected.observer_deg);
+    SCOPED_TRACE(std::string(expected.illuminant) + " " + std::to_string(expected.observer_deg) +
+                 " deg");
+    const Colorimeter colorimeter =
+        Colorimeter::Load(DataDir(), expected.illuminant, expected.observer_deg);
     const XYZ white = colorimeter.White();
     EXPECT_NEAR(white.X, expected.x, kWhitePointTolerance);
     EXPECT_EQ(white.Y, 1.0);
@@ -141,18 +137,15 @@ TEST(ColorimeterTest, UsesTheCommonFiveNanometreGrid) {
     const char* illuminant;
     double first_nm, last_nm;
   };
-  const Range ranges[] = {{"A", 360, 830},   {"C", 380, 780}, {"D50", 380, 780},
-                          {"D65", 360, 830}, {"E", 380, 830}, {"F2", 380, 780},
-                          {"F11", 380, 780}};
+  const Range ranges[] = {{"A", 360, 830}, {"C", 380, 780},  {"D50", 380, 780}, {"D65", 360, 830},
+                          {"E", 380, 830}, {"F2", 380, 780}, {"F11", 380, 780}};
   for (int observer_deg : {2, 10}) {
     for (const Range& range : ranges) {
       SCOPED_TRACE(range.illuminant);
-      const Colorimeter colorimeter =
-          Colorimeter::Load(DataDir(), range.illuminant, observer_deg);
+      const Colorimeter colorimeter = Colorimeter::Load(DataDir(), range.illuminant, observer_deg);
       const std::vector<double>& lambda_nm = colorimeter.lambda_nm();
-      ASSERT_EQ(
-          lambda_nm.size(),
-          static_cast<std::size_t>((range.last_nm - range.first_nm) / 5 + 1));
+      ASSERT_EQ(lambda_nm.size(),
+                static_cast<std::size_t>((range.last_nm - range.first_nm) / 5 + 1));
       for (std::size_t i = 0; i < lambda_nm.size(); ++i) {
         EXPECT_EQ(lambda_nm[i], range.first_nm + 5.0 * static_cast<double>(i));
       }
@@ -192,8 +185,8 @@ TEST(ColorimeterTest, WeightsAreTheNormalisedProducts) {
 }
 
 TEST(ColorimeterTest, IlluminantNamesAreCaseInsensitive) {
-  EXPECT_EQ(IlluminantNames(), (std::vector<std::string>{"A", "C", "D50", "D65",
-                                                         "E", "F2", "F11"}));
+  EXPECT_EQ(IlluminantNames(),
+            (std::vector<std::string>{"A", "C", "D50", "D65", "E", "F2", "F11"}));
   const Colorimeter lower = Colorimeter::Load(DataDir(), "d65", 10);
   EXPECT_EQ(lower.illuminant(), "D65");
   EXPECT_EQ(lower.observer_deg(), 10);
@@ -202,8 +195,7 @@ TEST(ColorimeterTest, IlluminantNamesAreCaseInsensitive) {
 }
 
 TEST(ColorimeterTest, UnknownIlluminantListsTheValidNames) {
-  const std::string message =
-      ErrorOf([] { Colorimeter::Load(DataDir(), "D66", 2); });
+  const std::string message = ErrorOf([] { Colorimeter::Load(DataDir(), "D66", 2); });
   EXPECT_NE(message.find("D66"), std::string::npos) << message;
   for (const std::string& name : IlluminantNames()) {
     EXPECT_NE(message.find(name), std::string::npos) << message;
@@ -211,16 +203,15 @@ TEST(ColorimeterTest, UnknownIlluminantListsTheValidNames) {
 }
 
 TEST(ColorimeterTest, UnknownObserverIsRefused) {
-  const std::string message =
-      ErrorOf([] { Colorimeter::Load(DataDir(), "D65", 5); });
+  const std::string message = ErrorOf([] { Colorimeter::Load(DataDir(), "D65", 5); });
   EXPECT_NE(message.find('5'), std::string::npos) << message;
   EXPECT_NE(message.find("10"), std::string::npos) << message;
 }
 
 TEST(ColorimeterTest, WrongReflectanceLengthIsRefused) {
   const Colorimeter colorimeter = Colorimeter::Load(DataDir(), "D65", 2);
-  const std::string message = ErrorOf(
-      [&] { colorimeter.ReflectanceToXYZ(std::vector<double>(81, 0.5)); });
+  const std::string message =
+      ErrorOf([&] { colorimeter.ReflectanceToXYZ(std::vector<double>(81, 0.5)); });
   EXPECT_NE(message.find("81"), std::string::npos) << message;
   EXPECT_NE(message.find("95"), std::string::npos) << message;
 }
@@ -230,8 +221,7 @@ TEST(ColorimeterTest, WrongReflectanceLengthIsRefused) {
 std::string DataDirWithD65(const std::string& d65_text) {
   const std::string dir = alloycolor::testing::MakeTempDir();
   std::filesystem::create_directories(dir + "/cie");
-  std::filesystem::copy_file(DataDir() + "/cie/cmf-1931-2.csv",
-                             dir + "/cie/cmf-1931-2.csv");
+  std::filesystem::copy_file(DataDir() + "/cie/cmf-1931-2.csv", dir + "/cie/cmf-1931-2.csv");
   alloycolor::testing::WriteText(dir + "/cie/illuminant-D65.csv", d65_text);
   return dir;
 }
@@ -268,8 +258,7 @@ TEST(ColorimeterTest, DamagedTablesNameTheFileAndLine) {
   for (const Case& c : cases) {
     const std::string dir = DataDirWithD65(c.text);
     const std::string path = dir + "/cie/illuminant-D65.csv";
-    const std::string message =
-        ErrorOf([&] { Colorimeter::Load(dir, "D65", 2); });
+    const std::string message = ErrorOf([&] { Colorimeter::Load(dir, "D65", 2); });
     EXPECT_NE(message.find(path), std::string::npos) << message;
     EXPECT_NE(message.find(c.expected_location), std::string::npos) << message;
     EXPECT_NE(message.find(c.expected_words), std::string::npos) << message;
@@ -279,10 +268,8 @@ TEST(ColorimeterTest, DamagedTablesNameTheFileAndLine) {
 
 TEST(ColorimeterTest, MissingTableIsNamed) {
   const std::string dir = alloycolor::testing::MakeTempDir();
-  const std::string message =
-      ErrorOf([&] { Colorimeter::Load(dir, "A", 2); });
-  EXPECT_NE(message.find(dir + "/cie/illuminant-A.csv"), std::string::npos)
-      << message;
+  const std::string message = ErrorOf([&] { Colorimeter::Load(dir, "A", 2); });
+  EXPECT_NE(message.find(dir + "/cie/illuminant-A.csv"), std::string::npos) << message;
   std::filesystem::remove_all(dir);
 }
 
@@ -329,9 +316,8 @@ TEST(SRGBTest, MatrixRowsAreTheStandardOnes) {
 
 TEST(SRGBTest, InverseMatchesTheStandardInverse) {
   // IEC 61966-2-1 RGB -> XYZ, printed to 4 decimals.
-  const double expected[3][3] = {{0.4124, 0.3576, 0.1805},
-                                 {0.2126, 0.7152, 0.0722},
-                                 {0.0193, 0.1192, 0.9505}};
+  const double expected[3][3] = {
+      {0.4124, 0.3576, 0.1805}, {0.2126, 0.7152, 0.0722}, {0.0193, 0.1192, 0.9505}};
   const RGB primaries[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   for (int j = 0; j < 3; ++j) {
     const XYZ xyz = XYZFromLinearSRGB(primaries[j]);
@@ -354,8 +340,7 @@ TEST(SRGBTest, TransferFunctionBreakpoints) {
   // there to within the printed digits).
   EXPECT_NEAR(SRGBEncode(0.0031308), 0.04045, 1e-6);
   EXPECT_NEAR(SRGBDecode(0.04045), 0.0031308, 1e-8);
-  EXPECT_NEAR(1.055 * std::pow(0.0031308, 1 / 2.4) - 0.055,
-              SRGBEncode(0.0031308), 1e-7);
+  EXPECT_NEAR(1.055 * std::pow(0.0031308, 1 / 2.4) - 0.055, SRGBEncode(0.0031308), 1e-7);
   EXPECT_DOUBLE_EQ(SRGBEncode(0.001), 0.01292);
   EXPECT_EQ(SRGBEncode(0.0), 0.0);
   EXPECT_NEAR(SRGBEncode(1.0), 1.0, 1e-15);
@@ -377,11 +362,9 @@ TEST(SRGBTest, EightBitClampsAndRounds) {
   using Bytes = std::array<std::uint8_t, 3>;
   EXPECT_EQ(SRGB8FromLinear({0, 0, 0}), (Bytes{0, 0, 0}));
   EXPECT_EQ(SRGB8FromLinear({1, 1, 1}), (Bytes{255, 255, 255}));
-  EXPECT_EQ(
-      SRGB8FromLinear({-0.5, 2.0, std::numeric_limits<double>::quiet_NaN()}),
-      (Bytes{0, 255, 0}));
-  EXPECT_EQ(SRGB8FromLinear({0.2158605, SRGBDecode(1.0 / 255.0),
-                             SRGBDecode(254.0 / 255.0)}),
+  EXPECT_EQ(SRGB8FromLinear({-0.5, 2.0, std::numeric_limits<double>::quiet_NaN()}),
+            (Bytes{0, 255, 0}));
+  EXPECT_EQ(SRGB8FromLinear({0.2158605, SRGBDecode(1.0 / 255.0), SRGBDecode(254.0 / 255.0)}),
             (Bytes{128, 1, 254}));
 }
 
@@ -437,8 +420,7 @@ TEST(LabTest, LinearBranchAndBreakpoint) {
   // CIE 15:2004: L* = (24389/27) Y/Yn below Y/Yn = 216/24389, where L* = 8 from
   // both sides.
   const XYZ white{1.0, 1.0, 1.0};
-  EXPECT_NEAR(LabFromXYZ({0.005, 0.005, 0.005}, white).L,
-              24389.0 / 27.0 * 0.005, 1e-12);
+  EXPECT_NEAR(LabFromXYZ({0.005, 0.005, 0.005}, white).L, 24389.0 / 27.0 * 0.005, 1e-12);
   const double t = 216.0 / 24389.0;
   EXPECT_NEAR(LabFromXYZ({t, t, t}, white).L, 8.0, 1e-12);
   EXPECT_NEAR(LabFromXYZ({t * (1 + 1e-12), t, t}, white).L, 8.0, 1e-9);

@@ -307,8 +307,9 @@ TEST_F(ManifestTest, ReplicatesAfterWeightConversion) {
 
 // The same measurement twice is still refused, at one composition as at two.
 TEST_F(ManifestTest, TheSameFileOrTheSameSpectrumTwiceIsRefused) {
-  std::string path = Manifest(std::string(kHead) +
-                              R"("samples": [{"x": 0.5, "file": "a.yml"}, {"x": 0.5, "file": "a.yml"}]})");
+  std::string path =
+      Manifest(std::string(kHead) +
+               R"("samples": [{"x": 0.5, "file": "a.yml"}, {"x": 0.5, "file": "a.yml"}]})");
   EXPECT_THAT(ErrorOf(path), HasSubstr("both use 'a.yml'"));
   fs::copy_file(dir_ + "/a.yml", dir_ + "/copy.yml");
   path = Manifest(std::string(kHead) +
@@ -519,7 +520,8 @@ TEST(ConventionalValence, FlaggedInTheParamsReadOut) {
   const std::string ag = DataDir() + "/Au-Ag/Rioux-Au0Ag100.yml";
   WriteText(dir + "/dataset.json",
             R"({"system": {"a": "Au", "b": "Pd"}, "composition": "atomic_fraction_a",
-                "samples": [{"x": 0, "file": ")" + ag + R"("}, {"x": 1, "file": ")" + au + R"("}]})");
+                "samples": [{"x": 0, "file": ")" +
+                ag + R"("}, {"x": 1, "file": ")" + au + R"("}]})");
   const auto r = RunProgram({"params", "--data", dir, "--method", "eps-linear", "--steps", "2"});
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("Pd: Z = 1 (conventional"), std::string::npos) << r.out;

@@ -186,10 +186,10 @@ TEST(ExportTest, PaperModelReproducesTheModelsIndex) {
 TEST(ExportTest, SmoothModelIsExportedAtItsOwnGrid) {
   const std::string dir = MakeTempDir();
   const std::string model_path = dir + "/auag.json";
-  ASSERT_EQ(RunProgram({"fit", "--data", "Au-Ag", "--method", "smooth", "--out", model_path,
-                        "--quiet"})
-                .status,
-            0);
+  ASSERT_EQ(
+      RunProgram({"fit", "--data", "Au-Ag", "--method", "smooth", "--out", model_path, "--quiet"})
+          .status,
+      0);
   const std::string prefix = dir + "/s";
   const auto run =
       RunProgram({"export", "--model", model_path, "--x", "18k", "--out", prefix, "--quiet"});

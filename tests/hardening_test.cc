@@ -20,10 +20,9 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/io.h"
@@ -264,9 +263,10 @@ TEST(OutputGuard, OnlyNotedInputsAreRefused) {
   guard.NoteInput(input);
   EXPECT_THAT(ErrorOf([&] { WriteFileAtomic(input, "new\n", &guard); }),
               ::testing::HasSubstr("one of this command's inputs"));
-  EXPECT_THAT(ErrorOf([&] { StreamOutput stream(dir + "/../" + fs::path(dir).filename().string() +
-                                                "/in.csv",
-                                                &guard); }),
+  EXPECT_THAT(ErrorOf([&] {
+                StreamOutput stream(dir + "/../" + fs::path(dir).filename().string() + "/in.csv",
+                                    &guard);
+              }),
               ::testing::HasSubstr("one of this command's inputs"));
   OutputGuard other;
   WriteFileAtomic(input, "other\n", &other);
@@ -439,13 +439,12 @@ TEST(Messages, AModelWithAStringFinalCostNamesTheField) {
 // cause, status 2, for a command that prints a table and for a sweep.
 TEST(Resources, AFullDiskIsOneErrorNamingTheOutput) {
   const std::string dir = MakeTempDir();
-  for (const std::string& args :
-       {std::string("color --data Au-Ag --method paper --x 0.5,0.6"),
-        std::string("sweep --data Au-Ag --method paper --steps 10"),
-        std::string("predict --data Au-Ag --method paper --x 0.5")}) {
+  for (const std::string& args : {std::string("color --data Au-Ag --method paper --x 0.5,0.6"),
+                                  std::string("sweep --data Au-Ag --method paper --steps 10"),
+                                  std::string("predict --data Au-Ag --method paper --x 0.5")}) {
     SCOPED_TRACE(args);
-    const std::string command = "exec '" + std::string(ALLOYCOLOR_BINARY) + "' " + args +
-                                " >/dev/full 2>'" + dir + "/err'";
+    const std::string command =
+        "exec '" + std::string(ALLOYCOLOR_BINARY) + "' " + args + " >/dev/full 2>'" + dir + "/err'";
     const int status = std::system(("bash -c \"" + command + "\"").c_str());
     ASSERT_TRUE(WIFEXITED(status));
     EXPECT_EQ(WEXITSTATUS(status), 2);
@@ -495,9 +494,9 @@ TEST(Resources, AHugeSweepIsRefusedUnlessForced) {
             }),
             5.0);
   ExpectOneError(r, {"--steps 1000000000", "1000000000 rows", "78 GB", "1 GB", "--force"});
-  ExpectOneError(RunProgram({"sweep", "--data", "Au-Ag", "--steps", "20000000", "--format",
-                             "json"}),
-                 {"2.2 GB", "--force"});
+  ExpectOneError(
+      RunProgram({"sweep", "--data", "Au-Ag", "--steps", "20000000", "--format", "json"}),
+      {"2.2 GB", "--force"});
   // Forced past `ulimit -f`: refused before the work, naming the limit.
   r = RunWithFileLimit(
       1000, {"sweep", "--data", "Au-Ag", "--steps", "20000000", "--force", "--out", out});

@@ -65,9 +65,10 @@ TEST(Match, RoundTripRecoversTheComposition) {
   for (int i = 0; i <= 400; ++i) {
     const double x0 = i / 400.0;
     const double h = 1e-3;
-    const double speed_per_at = color::DeltaE00(ChainLab(m.colorimeter, *m.model, std::max(0.0, x0 - h), 0),
-                                                ChainLab(m.colorimeter, *m.model, std::min(1.0, x0 + h), 0)) /
-                                (100 * (std::min(1.0, x0 + h) - std::max(0.0, x0 - h)));
+    const double speed_per_at =
+        color::DeltaE00(ChainLab(m.colorimeter, *m.model, std::max(0.0, x0 - h), 0),
+                        ChainLab(m.colorimeter, *m.model, std::min(1.0, x0 + h), 0)) /
+        (100 * (std::min(1.0, x0 + h) - std::max(0.0, x0 - h)));
     const std::vector<color::Match> matches =
         matcher.Find(ChainLab(m.colorimeter, *m.model, x0, 0));
     ASSERT_FALSE(matches.empty());
@@ -85,8 +86,10 @@ TEST(Match, RoundTripRecoversTheComposition) {
     sum += 100 * nearest;
     ++counted;
   }
-  std::printf("round trip: %d compositions where colour changes > 0.2 dE00/at%%; "
-              "max error %.2e at%%, mean %.2e at%%\n", counted, worst, sum / counted);
+  std::printf(
+      "round trip: %d compositions where colour changes > 0.2 dE00/at%%; "
+      "max error %.2e at%%, mean %.2e at%%\n",
+      counted, worst, sum / counted);
   EXPECT_GT(counted, 300);
 }
 
@@ -124,8 +127,8 @@ TEST(Match, ListsEveryCompositionOfEqualColour) {
 // colour between g = 0.1 and 0.95 is reached twice. Both are listed with de00 ~ 0 (checked
 // on the material-colour chain), the first at x0, the other beyond the peak.
 TEST(Match, ListsBothCompositionsOfARisingAndFallingColour) {
-  const std::string dir = testing::WriteSyntheticDataset(
-      {0.0, 0.25, 0.5, 0.75, 1.0}, [](double x, double lambda_nm) {
+  const std::string dir =
+      testing::WriteSyntheticDataset({0.0, 0.25, 0.5, 0.75, 1.0}, [](double x, double lambda_nm) {
         return testing::LinearEps(0.95 * std::sin(kPi * x) + 0.1 * x, lambda_nm);
       });
   const Dataset dataset = LoadDataset(dir);
@@ -176,8 +179,8 @@ TEST(Match, ReflectanceSpectrumRoundTrip) {
   // Its colour from R read linearly between the 10 nm samples: close, not equal.
   EXPECT_LT(matches.front().de00, 0.05);
 
-  const RunResult run = RunProgram({"match", "--model", m.model_path, "--reflectance", path,
-                                    "--json", "--quiet"});
+  const RunResult run =
+      RunProgram({"match", "--model", m.model_path, "--reflectance", path, "--json", "--quiet"});
   ASSERT_EQ(run.status, 0) << run.err;
   const auto doc = nlohmann::json::parse(run.out);
   EXPECT_NEAR(doc["matches"][0]["x_atomic"].get<double>(), x0, 1e-6);
@@ -215,8 +218,8 @@ TEST(Tolerance, WindowAgreesWithBruteForce) {
         }
         edges[side] = x;
       }
-      std::printf("tolerance x0 %.2f dE %.1f: window [%.6f, %.6f], brute force [%.6f, %.6f]\n",
-                  x0, de, w.x_low, w.x_high, edges[0], edges[1]);
+      std::printf("tolerance x0 %.2f dE %.1f: window [%.6f, %.6f], brute force [%.6f, %.6f]\n", x0,
+                  de, w.x_low, w.x_high, edges[0], edges[1]);
       EXPECT_NEAR(w.x_low, edges[0], 1e-4);
       EXPECT_NEAR(w.x_high, edges[1], 1e-4);
       EXPECT_FALSE(w.clipped_low);
@@ -235,8 +238,8 @@ TEST(Tolerance, ClipsAtTheModelsRange) {
   EXPECT_EQ(w.x_high, 1.0);
   EXPECT_FALSE(w.clipped_low);
 
-  const RunResult run = RunProgram({"tolerance", "--model", m.model_path, "--x", "0.99",
-                                    "--de", "5", "--json"});
+  const RunResult run =
+      RunProgram({"tolerance", "--model", m.model_path, "--x", "0.99", "--de", "5", "--json"});
   ASSERT_EQ(run.status, 0) << run.err;
   const auto doc = nlohmann::json::parse(run.out);
   EXPECT_TRUE(doc["clipped_high"].get<bool>());
@@ -276,8 +279,8 @@ TEST(MatchProgram, ReachableTargetPrintsAllUnits) {
   const color::Lab lab = ChainLab(m.colorimeter, *m.model, 0.75, 0);
   char text[128];
   std::snprintf(text, sizeof text, "%.10f,%.10f,%.10f", lab.L, lab.a, lab.b);
-  const RunResult run = RunProgram({"match", "--model", m.model_path, "--lab", text,
-                                    "--target-sigma", "0.5"});
+  const RunResult run =
+      RunProgram({"match", "--model", m.model_path, "--lab", text, "--target-sigma", "0.5"});
   ASSERT_EQ(run.status, 0) << run.err;
   EXPECT_NE(run.out.find("75.00 at% Au"), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("wt% Au"), std::string::npos) << run.out;
@@ -312,11 +315,12 @@ TEST(MatchProgram, BadInputsGiveOneLineNamingTheCulprit) {
   }
   const std::string dir = MakeTempDir();
   testing::WriteText(dir + "/r.csv", "wavelength_nm,R\n500,0.5\n600,1.7\n");
-  const RunResult run = RunProgram({"match", "--model", m.model_path, "--reflectance", dir + "/r.csv"});
+  const RunResult run =
+      RunProgram({"match", "--model", m.model_path, "--reflectance", dir + "/r.csv"});
   EXPECT_EQ(run.status, 2);
   EXPECT_NE(run.err.find(dir + "/r.csv:3:"), std::string::npos) << run.err;
-  const RunResult tol = RunProgram({"tolerance", "--model", m.model_path, "--x", "0.5",
-                                    "--illuminants", "D65,Q"});
+  const RunResult tol =
+      RunProgram({"tolerance", "--model", m.model_path, "--x", "0.5", "--illuminants", "D65,Q"});
   EXPECT_EQ(tol.status, 2);
   EXPECT_EQ(testing::CountLines(tol.err), 1) << tol.err;
 }
@@ -368,10 +372,11 @@ Recovery RecoverHeldOut(const std::string& manifest) {
       const double error = best.x_atomic - s.x_atomic;
       const double error_wt = WeightFromAtomicFraction(best.x_atomic, dataset.system) -
                               WeightFromAtomicFraction(s.x_atomic, dataset.system);
-      std::printf("  %s x %.4f: recovered %.4f +- %.4f (dE00 left %.2f), error %+.2f at%% "
-                  "%+.2f wt%%\n",
-                  dataset.system.Name().c_str(), s.x_atomic, best.x_atomic, best.x_sigma,
-                  best.de00, 100 * error, 100 * error_wt);
+      std::printf(
+          "  %s x %.4f: recovered %.4f +- %.4f (dE00 left %.2f), error %+.2f at%% "
+          "%+.2f wt%%\n",
+          dataset.system.Name().c_str(), s.x_atomic, best.x_atomic, best.x_sigma, best.de00,
+          100 * error, 100 * error_wt);
       r.mean_abs_at += 100 * std::abs(error);
       r.mean_abs_wt += 100 * std::abs(error_wt);
       r.within_two_sigma += std::abs(error) <= 2 * best.x_sigma;

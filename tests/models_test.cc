@@ -8,15 +8,15 @@
 #include <cstdio>
 #include <fstream>
 
-#include "alloycolor/core/grid.h"
-#include "alloycolor/model/alloy_model.h"
 #include "alloycolor/core/composition.h"
 #include "alloycolor/core/dataset.h"
 #include "alloycolor/core/error.h"
+#include "alloycolor/core/grid.h"
 #include "alloycolor/core/io.h"
+#include "alloycolor/core/units.h"
+#include "alloycolor/model/alloy_model.h"
 #include "alloycolor/model/interpolation.h"
 #include "alloycolor/model/sample_models.h"
-#include "alloycolor/core/units.h"
 #include "test_util.h"
 
 namespace alloycolor {
@@ -31,7 +31,7 @@ std::complex<double> DrudeEps(double lambda_nm, double tau_fs, double mass, doub
   const double hbar_ev_s = 6.582119569e-16, e = 1.602176634e-19, eps0 = 8.8541878128e-12,
                me = 9.1093837015e-31;
   const double omega = 2 * M_PI * 299792458.0 / (lambda_nm * 1e-9);  // rad/s
-  const double wp2 = ne_m3 * e * e / (eps0 * me * mass);              // rad^2/s^2
+  const double wp2 = ne_m3 * e * e / (eps0 * me * mass);             // rad^2/s^2
   const double gamma = 1.0 / (tau_fs * 1e-15);
   (void)hbar_ev_s;
   return 1.0 - wp2 / (omega * (omega + std::complex<double>(0, gamma)));
@@ -102,7 +102,8 @@ TEST(PaperModel, NamesSamplesWhereTheInversionIsUndefinedAndStaysFinite) {
   const SampleModel paper(SampleModel::Kind::kPaper, data);
   bool named = false;
   for (const std::string& w : paper.warnings()) {
-    named |= w.find("Querry-Zn100") != std::string::npos && w.find("eps1 >= 1") != std::string::npos;
+    named |=
+        w.find("Querry-Zn100") != std::string::npos && w.find("eps1 >= 1") != std::string::npos;
   }
   EXPECT_TRUE(named);
   for (double x = 0; x <= 1.0; x += 0.05) {

@@ -140,7 +140,8 @@ TEST(NumericalEdges, CompositionsExactlyZeroAndOne) {
   // The paper model at x = 0 and 1 is the pure metals' data.
   for (const auto& [x, file] : {std::pair<std::string, std::string>{"0", "Rioux-Au0Ag100.yml"},
                                 {"1", "Rioux-Au100Ag0.yml"}}) {
-    const RunResult model = RunProgram({"color", "--json", "--quiet", "--data", "Au-Ag", "--method", "paper", "--x", x});
+    const RunResult model = RunProgram(
+        {"color", "--json", "--quiet", "--data", "Au-Ag", "--method", "paper", "--x", x});
     const RunResult data =
         RunProgram({"color", "--json", "--quiet", "--nk", DataDir() + "/Au-Ag/" + file});
     ASSERT_EQ(model.status, 0);

@@ -19,7 +19,8 @@ TEST(ParallelTasks, RunsEveryTaskOnce) {
   for (size_t count : {0, 1, 2, 3, 17, 1000}) {
     std::vector<int> runs(count, 0);
     ThreadBudget budget(4);
-    ParallelTasks(count, [&](size_t i) { ++runs[i]; }, &budget);
+    ParallelTasks(
+        count, [&](size_t i) { ++runs[i]; }, &budget);
     for (size_t i = 0; i < count; ++i) EXPECT_EQ(runs[i], 1) << i << " of " << count;
   }
 }
@@ -34,7 +35,8 @@ TEST(ParallelTasks, NestedCallsRunEverything) {
         ParallelTasks(
             runs[i].size(),
             [&](size_t j) {
-              ParallelTasks(3, [&](size_t) { ++total; }, &budget);
+              ParallelTasks(
+                  3, [&](size_t) { ++total; }, &budget);
               ++runs[i][j];
             },
             &budget);
@@ -46,7 +48,8 @@ TEST(ParallelTasks, NestedCallsRunEverything) {
   EXPECT_EQ(total.load(), 6 * 9 * 3);
   // The threads claimed are given back: a later call still runs everything.
   std::atomic<int> later{0};
-  ParallelTasks(50, [&](size_t) { ++later; }, &budget);
+  ParallelTasks(
+      50, [&](size_t) { ++later; }, &budget);
   EXPECT_EQ(later.load(), 50);
   EXPECT_EQ(budget.Claim(100), 2);  // all three threads but the caller's are free again
 }
@@ -54,7 +57,8 @@ TEST(ParallelTasks, NestedCallsRunEverything) {
 TEST(ParallelTasks, WithoutABudgetEverythingRunsOnTheCallersThread) {
   const std::thread::id caller = std::this_thread::get_id();
   int elsewhere = 0;
-  ParallelTasks(20, [&](size_t) { elsewhere += std::this_thread::get_id() != caller; }, nullptr);
+  ParallelTasks(
+      20, [&](size_t) { elsewhere += std::this_thread::get_id() != caller; }, nullptr);
   EXPECT_EQ(elsewhere, 0);
 }
 

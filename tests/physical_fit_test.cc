@@ -11,13 +11,13 @@
 #include <random>
 
 #include "alloycolor/color/colorimetry.h"
-#include "alloycolor/fit/methods.h"
-#include "alloycolor/fit/physical_costs.h"
 #include "alloycolor/core/dataset.h"
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/io.h"
-#include "alloycolor/model/physical_model.h"
 #include "alloycolor/core/units.h"
+#include "alloycolor/fit/methods.h"
+#include "alloycolor/fit/physical_costs.h"
+#include "alloycolor/model/physical_model.h"
 #include "test_util.h"
 
 namespace alloycolor {
@@ -27,7 +27,6 @@ using testing::DataDir;
 using testing::MakeTempDir;
 using testing::RunProgram;
 using testing::WriteText;
-
 
 std::complex<double> Std(const Complex<double>& z) { return {z.re, z.im}; }
 
@@ -265,8 +264,7 @@ TEST(PhysicalFit, TheDataChooseTheCompositionDegree) {
     const auto model = fit::BuildModel("physical", data, settings);
     // Built again through the memo (as validate's physical and auto share the choice) and
     // afresh: the same model file.
-    EXPECT_EQ(fit::BuildModel("physical", data, settings)->ToJson().dump(),
-              model->ToJson().dump());
+    EXPECT_EQ(fit::BuildModel("physical", data, settings)->ToJson().dump(), model->ToJson().dump());
     fit::FitSettings fresh = settings;
     fresh.memo = nullptr;
     EXPECT_EQ(fit::BuildModel("physical", data, fresh)->ToJson().dump(), model->ToJson().dump());

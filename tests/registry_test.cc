@@ -1,6 +1,8 @@
 // The registry is the one place that knows a method: a method registered here, by this file
 // alone, is a candidate of `auto` (its score in auto's table), one of `validate`'s defaults,
 // and reads back from its model file; the built-in methods' traits are what the rest asks.
+#include "alloycolor/model/registry.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,7 +15,6 @@
 #include "alloycolor/core/spectrum.h"
 #include "alloycolor/fit/methods.h"
 #include "alloycolor/model/alloy_model.h"
-#include "alloycolor/model/registry.h"
 #include "alloycolor/validate/validation.h"
 #include "test_util.h"
 
@@ -123,7 +124,7 @@ TEST(Registry, AMethodRegisteredHereIsKnownEverywhere) {
                                [](const MethodScore& s) { return s.method == "test-nearest"; });
   ASSERT_NE(it, selection.scores.end());
   EXPECT_TRUE(it->error.empty()) << it->error;
-  EXPECT_EQ(it->folds, 3);  // three held-out compositions
+  EXPECT_EQ(it->folds, 3);       // three held-out compositions
   EXPECT_EQ(it->end_miss, 0.0);  // it passes through the ends' own samples
 
   // Built directly, with its error bars from its folds, and read back from its file.
@@ -139,8 +140,8 @@ TEST(Registry, AMethodRegisteredHereIsKnownEverywhere) {
   options.methods = DefaultValidationMethods();
   options.angles_deg = {0.0};
   options.mode = "holdout";
-  const validate::ValidationReport report =
-      validate::ComputeValidation(data, {validate::SplitAtCompositions(data, {0.5})}, cm, options, {});
+  const validate::ValidationReport report = validate::ComputeValidation(
+      data, {validate::SplitAtCompositions(data, {0.5})}, cm, options, {});
   ASSERT_EQ(report.holdouts.size(), 1u);
   EXPECT_EQ(report.holdouts[0].results.count("test-nearest"), 1u);
 }

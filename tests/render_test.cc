@@ -15,13 +15,13 @@
 #include <string>
 #include <vector>
 
+#include "alloycolor/color/colorimetry.h"
+#include "alloycolor/color/material_color.h"
 #include "alloycolor/core/dataset.h"
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/io.h"
 #include "alloycolor/model/sample_models.h"
-#include "alloycolor/color/colorimetry.h"
 #include "alloycolor/render/image.h"
-#include "alloycolor/color/material_color.h"
 #include "alloycolor/render/renderer.h"
 #include "alloycolor/render/shading.h"
 #include "reference_renderer.h"
@@ -489,8 +489,8 @@ Agreement Compare(const LinearImage& fast, const LinearImage& slow) {
       off = off || std::abs(a - b) > 1e-6 + 1e-5 * std::abs(b);
     }
     out.pixels_off += off;
-    out.worst_alpha = std::max(
-        out.worst_alpha, std::abs(static_cast<double>(fast.rgba[p + 3]) - slow.rgba[p + 3]));
+    out.worst_alpha = std::max(out.worst_alpha,
+                               std::abs(static_cast<double>(fast.rgba[p + 3]) - slow.rgba[p + 3]));
   }
   return out;
 }
@@ -522,10 +522,10 @@ TEST(RenderTest, ImagesEqualTheStraightforwardPerPixelRenderer) {
               Compare(renderer.Render(table),
                       alloycolor::testing::ReferenceRender(
                           colorimeter, options, [&table](double mu) { return table.At(mu); }));
-          const std::string what = ShapeName(shape) + " " + LightingName(lighting) +
-                                   (background == Background::kTransparent ? " transparent"
-                                                                           : " backdrop") +
-                                   " roughness " + std::to_string(roughness);
+          const std::string what =
+              ShapeName(shape) + " " + LightingName(lighting) +
+              (background == Background::kTransparent ? " transparent" : " backdrop") +
+              " roughness " + std::to_string(roughness);
           EXPECT_LE(agreement.pixels_off, 3 + options.size * options.size / 1000) << what;
           if (shape == Shape::kSphere) EXPECT_EQ(agreement.pixels_off, 0) << what;
           EXPECT_LE(agreement.worst_alpha, 1.0 / 16.0 + 1e-6) << what;

@@ -33,8 +33,8 @@ namespace alloycolor {
 namespace {
 
 namespace fs = std::filesystem;
-using ::testing::HasSubstr;
 using testing::DataDir;
+using ::testing::HasSubstr;
 using testing::MakeTempDir;
 using testing::ReadText;
 using testing::RunProgram;
@@ -72,7 +72,8 @@ std::string WriteReplicateDataset() {
   }
   WriteText(dir + "/dataset.json",
             "{\"system\": {\"a\": \"Au\", \"b\": \"Ag\"}, \"composition\": \"atomic_fraction_a\", "
-            "\"samples\": [" + samples + "]}");
+            "\"samples\": [" +
+                samples + "]}");
   return dir;
 }
 
@@ -97,9 +98,14 @@ TEST(Replicates, TheSameFileTwiceIsRefused) {
   const std::string au50 = DataDir() + "/Au-Ag/Rioux-Au50Ag50.yml";
   WriteText(dir + "/dataset.json",
             "{\"system\": {\"a\": \"Au\", \"b\": \"Ag\"}, \"composition\": \"atomic_fraction_a\", "
-            "\"samples\": [{\"x\": 0, \"file\": \"" + DataDir() + "/Au-Ag/Rioux-Au0Ag100.yml\"}, "
-            "{\"x\": 0.5, \"file\": \"" + au50 + "\"}, {\"x\": 0.5, \"file\": \"" + au50 + "\"}, "
-            "{\"x\": 1, \"file\": \"" + DataDir() + "/Au-Ag/Rioux-Au100Ag0.yml\"}]}");
+            "\"samples\": [{\"x\": 0, \"file\": \"" +
+                DataDir() +
+                "/Au-Ag/Rioux-Au0Ag100.yml\"}, "
+                "{\"x\": 0.5, \"file\": \"" +
+                au50 + "\"}, {\"x\": 0.5, \"file\": \"" + au50 +
+                "\"}, "
+                "{\"x\": 1, \"file\": \"" +
+                DataDir() + "/Au-Ag/Rioux-Au100Ag0.yml\"}]}");
   EXPECT_THAT(testing::ErrorOf([&] { LoadDataset(dir); }),
               HasSubstr("one file is one composition"));
 }
@@ -197,8 +203,8 @@ TEST(Replicates, HoldoutNamesOneFilmByItsFileOrBothByTheComposition) {
 TEST(Replicates, ValidateHoldsOutOneFilmByFileName) {
   const std::string out = MakeTempDir();
   const testing::RunResult run =
-      RunProgram({"validate", "--data", ReplicateDir(), "--holdout", "Au50-film2.csv",
-                  "--methods", "eps-linear,paper", "--angles", "0", "--out", out, "--quiet"});
+      RunProgram({"validate", "--data", ReplicateDir(), "--holdout", "Au50-film2.csv", "--methods",
+                  "eps-linear,paper", "--angles", "0", "--out", out, "--quiet"});
   ASSERT_EQ(run.status, 0) << run.err;
   const nlohmann::json report = nlohmann::json::parse(ReadText(out + "/report.json"));
   ASSERT_EQ(report["holdouts"].size(), 1u);
@@ -213,9 +219,9 @@ TEST(Replicates, ValidateHoldsOutOneFilmByFileName) {
 
   // Leave-one-out by the program: one row per sample, both films at 0.5.
   const std::string loo = MakeTempDir();
-  const testing::RunResult all = RunProgram({"validate", "--data", ReplicateDir(), "--methods",
-                                             "eps-linear", "--angles", "0", "--out", loo,
-                                             "--quiet"});
+  const testing::RunResult all =
+      RunProgram({"validate", "--data", ReplicateDir(), "--methods", "eps-linear", "--angles", "0",
+                  "--out", loo, "--quiet"});
   ASSERT_EQ(all.status, 0) << all.err;
   const nlohmann::json rows = nlohmann::json::parse(ReadText(loo + "/report.json"));
   ASSERT_EQ(rows["holdouts"].size(), 4u);

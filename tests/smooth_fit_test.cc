@@ -80,7 +80,8 @@ TEST(SmoothCosts, RoughnessIsTheWeightedSecondDividedDifference) {
 
 // A gold-like eps with a dip in composition: PCHIP's case.
 std::complex<double> Curved(double x, double lambda) {
-  return {-20.0 - 8.0 * x + 6.0 * x * x - 0.01 * (lambda - 500), 1.0 + 4.0 * x * (1 - x) + 0.002 * lambda};
+  return {-20.0 - 8.0 * x + 6.0 * x * x - 0.01 * (lambda - 500),
+          1.0 + 4.0 * x * (1 - x) + 0.002 * lambda};
 }
 
 TEST(SmoothFit, AtZeroSmoothingItInterpolatesLikeEpsPchip) {
@@ -92,7 +93,8 @@ TEST(SmoothFit, AtZeroSmoothingItInterpolatesLikeEpsPchip) {
   const std::vector<double> grid = {400.0, 555.0, 700.0};
   for (double x : {0.0, 0.1, 0.2, 0.33, 0.5, 0.77, 1.0}) {
     const auto a = result.model->Permittivity(x, grid), b = pchip.Permittivity(x, grid);
-    for (size_t i = 0; i < grid.size(); ++i) EXPECT_LT(std::abs(a[i] - b[i]), 1e-8 * std::abs(b[i])) << x;
+    for (size_t i = 0; i < grid.size(); ++i)
+      EXPECT_LT(std::abs(a[i] - b[i]), 1e-8 * std::abs(b[i])) << x;
   }
 }
 
@@ -114,7 +116,11 @@ TEST(SmoothFit, LargeSmoothingGivesTheWeightedLeastSquaresLine) {
     for (const Sample& s : data.samples) {
       const std::complex<double> nk = NkAt(s.nk, 500.0), e = nk * nk;
       const double w = 1.0 / std::norm(e), y = part == 0 ? e.real() : e.imag(), x = s.x_atomic;
-      sw += w; swx += w * x; swxx += w * x * x; swy += w * y; swxy += w * x * y;
+      sw += w;
+      swx += w * x;
+      swxx += w * x * x;
+      swy += w * y;
+      swxy += w * x * y;
     }
     const double slope = (sw * swxy - swx * swy) / (sw * swxx - swx * swx);
     const double offset = (swy - slope * swx) / sw;
@@ -484,7 +490,8 @@ TEST(SmoothFit, SameInputsGiveTheSameBytesAndTheFileReadsBack) {
   const std::string a = ModelFileText(*fit::FitSmooth(data, options).model);
   const std::string b = ModelFileText(*fit::FitSmooth(data, options).model);
   EXPECT_TRUE(a == b) << "first difference at byte " << FirstDifference(a, b) << ": "
-                      << a.substr(FirstDifference(a, b) > 300 ? FirstDifference(a, b) - 300 : 0, 400);
+                      << a.substr(FirstDifference(a, b) > 300 ? FirstDifference(a, b) - 300 : 0,
+                                  400);
   const auto back = ModelFromJson(nlohmann::json::parse(a), "mem");
   const std::string c = ModelFileText(*back);
   EXPECT_TRUE(c == a) << "first difference at byte " << FirstDifference(a, c) << ": "
@@ -492,7 +499,8 @@ TEST(SmoothFit, SameInputsGiveTheSameBytesAndTheFileReadsBack) {
   const auto fitted = fit::FitSmooth(data, options).model;
   ASSERT_NE(a.find("\"knots_x\""), std::string::npos);
   const std::vector<double> grid = UniformGrid(360, 830, 2.5);
-  for (double x : {0.0, 0.37, 1.0}) EXPECT_EQ(back->Permittivity(x, grid), fitted->Permittivity(x, grid));
+  for (double x : {0.0, 0.37, 1.0})
+    EXPECT_EQ(back->Permittivity(x, grid), fitted->Permittivity(x, grid));
 }
 
 TEST(SmoothFit, RefitFromAnEarlierModelConvergesToTheSameFit) {
@@ -542,9 +550,9 @@ TEST(SmoothFit, AuAgPaperSplitColourErrorIsSmall) {
         color::LabFromXYZ(color::MaterialXYZ(cm, color::IndexOnGrid(cm, s.nk), 0.0), cm.White());
     auto de = [&](const AlloyModel& m) {
       return color::DeltaE00(
-          truth, color::LabFromXYZ(
-                     color::MaterialXYZ(cm, color::IndexOnGrid(cm, m, s.x_atomic), 0.0),
-                     cm.White()));
+          truth,
+          color::LabFromXYZ(color::MaterialXYZ(cm, color::IndexOnGrid(cm, m, s.x_atomic), 0.0),
+                            cm.White()));
     };
     worst_smooth = std::max(worst_smooth, de(*smooth));
     worst_paper = std::max(worst_paper, de(paper));

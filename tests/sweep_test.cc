@@ -133,9 +133,9 @@ TEST(ColorSweep, FastPathsEqualTheScalarPathRelatively) {
 // up to 1e24; on runs of 1 to 9 wavelengths (the SIMD body and its remainder), one
 // weight 1 at a time so each sum is one R.
 TEST(ReflectanceSums, EqualFresnelReflectanceOfTheIndex) {
-  std::vector<Complex<double>> eps = {{-30, 1.5},  {-1.2, 5.8},  {2.25, 0},    {2.25, 1e-9},
-                                      {0.5, 0.1},  {0, 0},       {0, 3},       {-4, 0},
-                                      {1, 0},      {-11, -0.7},  {1e-300, 0},  {-1e12, 3e11},
+  std::vector<Complex<double>> eps = {{-30, 1.5},   {-1.2, 5.8}, {2.25, 0},     {2.25, 1e-9},
+                                      {0.5, 0.1},   {0, 0},      {0, 3},        {-4, 0},
+                                      {1, 0},       {-11, -0.7}, {1e-300, 0},   {-1e12, 3e11},
                                       {1e24, 1e23}, {0.75, 0},   {0.75, 1e-12}, {0.25, 0}};
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> e1(-60, 10), e2(0, 20);
@@ -160,8 +160,8 @@ TEST(ReflectanceSums, EqualFresnelReflectanceOfTheIndex) {
                                  zero.data(), w.data(), sums);
           const Complex<double> e = all[start + one];
           const double expected = FresnelReflectance(IndexFromPermittivity(e), c).Average();
-          SCOPED_TRACE("eps " + std::to_string(e.re) + " + " + std::to_string(e.im) +
-                       "i at " + std::to_string(angle) + " degrees");
+          SCOPED_TRACE("eps " + std::to_string(e.re) + " + " + std::to_string(e.im) + "i at " +
+                       std::to_string(angle) + " degrees");
           // At eps = sin^2 (S = 0) dR/deps diverges: the reference's N^2, one rounding
           // away from eps, gives S ~ 1e-8 and moves R by about 2 S / cos there; both meet
           // the limit R = 1.

@@ -46,8 +46,7 @@ TempDirs& Made() {
 }  // namespace
 
 std::string MakeTempDir() {
-  std::string templ =
-      (std::filesystem::temp_directory_path() / "alloycolor-test-XXXXXX").string();
+  std::string templ = (std::filesystem::temp_directory_path() / "alloycolor-test-XXXXXX").string();
   if (mkdtemp(templ.data()) == nullptr) throw std::runtime_error("mkdtemp failed");
   Made().Add(templ);
   return templ;

@@ -15,9 +15,9 @@
 namespace alloycolor::testing {
 
 struct RunResult {
-  int status;          // exit status, or -1 if killed by a signal
-  std::string out;     // stdout
-  std::string err;     // stderr
+  int status;       // exit status, or -1 if killed by a signal
+  std::string out;  // stdout
+  std::string err;  // stderr
 };
 
 // Runs the alloycolor program with the given arguments (no shell), capturing its output.

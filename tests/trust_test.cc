@@ -41,7 +41,8 @@ void ExpectHonestAtOwnSamples(const AlloyModel& model, const Dataset& data) {
     if (e.delta_e00 <= 1.0) continue;
     bool named = false;
     for (const std::string& w : model.warnings()) {
-      named = named || (w.find(s.file) != std::string::npos && w.find("misses") != std::string::npos);
+      named =
+          named || (w.find(s.file) != std::string::npos && w.find("misses") != std::string::npos);
     }
     EXPECT_TRUE(named) << model.method() << " misses " << s.file << " by " << e.delta_e00
                        << " without a warning";

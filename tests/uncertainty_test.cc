@@ -11,8 +11,8 @@
 #include "alloycolor/core/dataset.h"
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/io.h"
-#include "alloycolor/model/optics.h"
 #include "alloycolor/fit/methods.h"
+#include "alloycolor/model/optics.h"
 #include "alloycolor/model/sample_models.h"
 #include "test_util.h"
 
@@ -102,7 +102,8 @@ TEST(PredictionError, FitsOfThreeCompositionsOrMoreCarryItAndTheFileKeepsIt) {
   const color::Colorimeter cm = color::Colorimeter::Load(DataDir(), "D65", 2);
   fit::FitSettings settings;
   settings.colorimeter = &cm;
-  const auto two = fit::BuildModel("eps-pchip", WithoutSamples(all, {0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9}), settings);
+  const auto two = fit::BuildModel(
+      "eps-pchip", WithoutSamples(all, {0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9}), settings);
   EXPECT_FALSE(two->HasUncertainty());
   const auto model = fit::BuildModel("eps-pchip", all, settings);
   ASSERT_TRUE(model->HasUncertainty());
@@ -170,7 +171,8 @@ TEST(PredictionError, EndFactorByHand) {
   }
   testing::WriteText(dir + "/dataset.json",
                      "{\"system\": {\"a\": \"Au\", \"b\": \"Ag\"}, \"composition\": "
-                     "\"atomic_fraction_a\", \"samples\": [" + samples + "]}");
+                     "\"atomic_fraction_a\", \"samples\": [" +
+                         samples + "]}");
   const color::Colorimeter cm = color::Colorimeter::Load(DataDir(), "D65", 2);
   fit::FitSettings settings;
   settings.colorimeter = &cm;
@@ -217,9 +219,11 @@ TEST(PredictionError, LinearInterpolationErrorGrowsAsTheGapSquared) {
 TEST(PredictionError, CalibrationIsCrossFitted) {
   const std::complex<double> eps0(-5.0, 2.0);
   const auto calibration = [&](double d1, double d2) {
-    const std::string dir = testing::WriteSyntheticDataset(
-        {0.0, 1.0 / 3, 2.0 / 3, 1.0}, [&](double x, double) {
-          const double d = std::abs(x - 1.0 / 3) < 1e-9 ? d1 : std::abs(x - 2.0 / 3) < 1e-9 ? d2 : 0.0;
+    const std::string dir =
+        testing::WriteSyntheticDataset({0.0, 1.0 / 3, 2.0 / 3, 1.0}, [&](double x, double) {
+          const double d = std::abs(x - 1.0 / 3) < 1e-9   ? d1
+                           : std::abs(x - 2.0 / 3) < 1e-9 ? d2
+                                                          : 0.0;
           return eps0 * (1.0 + x / 10 + d);
         });
     const color::Colorimeter cm = color::Colorimeter::Load(DataDir(), "D65", 2);
@@ -236,8 +240,8 @@ TEST(PredictionError, CalibrationIsCrossFitted) {
   // Nearly equal errors: calibration = g * SigmaCalibration({ln k, -ln k}), k their ratio.
   const double eta = 0.004;
   const auto [a0, b0] = errors(-eta, eta);
-  const double log_g =
-      std::log(calibration(-eta, eta)) - std::log(fit::SigmaCalibration({std::log(a0 / b0), std::log(b0 / a0)}));
+  const double log_g = std::log(calibration(-eta, eta)) -
+                       std::log(fit::SigmaCalibration({std::log(a0 / b0), std::log(b0 / a0)}));
   // Errors in the ratio 1 : 2.
   const double e = 0.01;
   const auto [a, b] = errors(0.0, e);

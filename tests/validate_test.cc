@@ -22,9 +22,9 @@
 #include <string>
 #include <vector>
 
-#include "alloycolor/core/io.h"
 #include "alloycolor/color/colorimetry.h"
 #include "alloycolor/color/material_color.h"
+#include "alloycolor/core/io.h"
 #include "test_util.h"
 
 namespace alloycolor {
@@ -135,8 +135,8 @@ TEST_F(AuAgHoldout, DeltaE00AgreesWithPredictOutput) {
     testing::WriteText(csv, predict.out);
     const auto predicted_index = color::IndexOnGrid(colorimeter, ReadNkCsv(csv));
     for (double angle : {0.0, 45.0}) {
-      const color::Lab a = color::LabFromXYZ(
-          color::MaterialXYZ(colorimeter, measured_index, angle), colorimeter.White());
+      const color::Lab a = color::LabFromXYZ(color::MaterialXYZ(colorimeter, measured_index, angle),
+                                             colorimeter.White());
       const color::Lab b = color::LabFromXYZ(
           color::MaterialXYZ(colorimeter, predicted_index, angle), colorimeter.White());
       const double expected = color::DeltaE00(a, b);
@@ -469,7 +469,8 @@ std::string NbSnSubset(const std::vector<std::pair<double, std::string>>& sample
   }
   testing::WriteText(dir + "/dataset.json",
                      R"({"system": {"a": "Sn", "b": "Nb"}, "composition": "weight_fraction_a",
-                         "samples": [)" + list + "]}");
+                         "samples": [)" +
+                         list + "]}");
   return dir;
 }
 
@@ -484,9 +485,9 @@ TEST(AutoMethod, WeighsALeadByTheScatterOfTwoFolds) {
   size_t folds = 0;
   ExpectChoiceWithinTheFoldsScatter(dir, "smooth", "eps-spline", &folds);
   EXPECT_EQ(folds, 2u);
-  const RunResult held = RunProgram(
-      {"validate", "--data", "Nb-Sn", "--holdout", "0.22,0.28,0.3,0.4,0.55", "--methods",
-       "smooth,eps-spline", "--out", dir + "/h", "--quiet"});
+  const RunResult held =
+      RunProgram({"validate", "--data", "Nb-Sn", "--holdout", "0.22,0.28,0.3,0.4,0.55", "--methods",
+                  "smooth,eps-spline", "--out", dir + "/h", "--quiet"});
   ASSERT_EQ(held.status, 0) << held.err;
   std::ifstream hin(dir + "/h/report.json");
   const nlohmann::json h = nlohmann::json::parse(hin)["summary"];
@@ -500,8 +501,8 @@ TEST(AutoMethod, WeighsALeadByTheScatterOfTwoFolds) {
 TEST(AutoMethod, TakesSmoothWithOneFold) {
   const std::string dir = MakeTempDir();
   const std::string held_out = "0.2,0.3,0.4,0.5,0.6,0.7,0.8,0.9";
-  const RunResult fit = RunProgram({"fit", "--data", "Au-Ag", "--exclude", held_out, "--quiet",
-                                    "--out", dir + "/a.json"});
+  const RunResult fit = RunProgram(
+      {"fit", "--data", "Au-Ag", "--exclude", held_out, "--quiet", "--out", dir + "/a.json"});
   ASSERT_EQ(fit.status, 0) << fit.err;
   std::ifstream in(dir + "/a.json");
   const nlohmann::json model = nlohmann::json::parse(in);
@@ -532,7 +533,8 @@ TEST(AutoMethod, TakesSmoothWithOneFold) {
 // others: before, the physical fit's error ended auto itself. The physical method alone is
 // refused with that one-line error.
 TEST(AutoMethod, GoesOnWhenThePhysicalFitIsRefused) {
-  static const double kScatter[11][8] = {  // per sample, x = 0, 0.1, ..., 1: c for n, for k
+  static const double kScatter[11][8] = {
+      // per sample, x = 0, 0.1, ..., 1: c for n, for k
       {0.0069, 0.0164, 0.0066, -0.0261, 0.0181, 0.0089, -0.0107, 0.0116},
       {0.0073, 0.0059, 0.0006, 0.0109, -0.0147, -0.0033, -0.0096, 0.012},
       {0.0008, -0.0058, -0.0156, -0.0051, 0.0002, -0.0055, 0.0259, 0.0201},
@@ -554,7 +556,8 @@ TEST(AutoMethod, GoesOnWhenThePhysicalFitIsRefused) {
     const double* c = kScatter[i];
     std::string text = "DATA:\n  - type: tabulated nk\n    data: |\n";
     for (size_t j = 0; j < s.lambda_nm.size(); ++j) {
-      const double u = (s.lambda_nm[j] - s.lambda_min_nm()) / (s.lambda_max_nm() - s.lambda_min_nm());
+      const double u =
+          (s.lambda_nm[j] - s.lambda_min_nm()) / (s.lambda_max_nm() - s.lambda_min_nm());
       const double su = std::sin(M_PI * u), cu = std::cos(M_PI * u);
       const double n = s.n[j] * (1 + (c[0] + c[1] * u + c[2] * su + c[3] * cu));
       const double k = s.k[j] * (1 + (c[4] + c[5] * u + c[6] * su + c[7] * cu));
@@ -568,7 +571,8 @@ TEST(AutoMethod, GoesOnWhenThePhysicalFitIsRefused) {
   }
   testing::WriteText(dir + "/dataset.json",
                      R"({"system": {"a": "Au", "b": "Ag"}, "composition": "atomic_fraction_a",
-                         "samples": [)" + list + "]}");
+                         "samples": [)" +
+                         list + "]}");
   const RunResult fit =
       RunProgram({"fit", "--data", dir, "--no-covariance", "--quiet", "--out", dir + "/a.json"});
   ASSERT_EQ(fit.status, 0) << fit.err;
@@ -631,8 +635,8 @@ TEST(Validate, PooledLeaveOneOutCoverageOfTheBundledSetsIsInTheIssuesBand) {
   for (size_t i = 0; i < sets.size(); ++i) {
     const std::string out = dir + "/r" + std::to_string(i);
     const RunResult r = RunProgram({"validate", "--data", sets[i], "--loo", "--methods",
-                                    "paper,eps-linear,eps-pchip,eps-spline,smooth",
-                                    "--angles", "0", "--quiet", "--out", out});
+                                    "paper,eps-linear,eps-pchip,eps-spline,smooth", "--angles", "0",
+                                    "--quiet", "--out", out});
     ASSERT_EQ(r.status, 0) << r.err;
     const nlohmann::json report = nlohmann::json::parse(ReadText(out + "/report.json"));
     for (const auto& [method, angles] : report["sigma_honesty"].items()) {
@@ -656,9 +660,9 @@ TEST(Validate, TheSameOnOneThreadAsOnSeveral) {
   for (int run = 0; run < 2; ++run) {
     const std::string threads = run == 0 ? "1" : "3";
     const std::string out = dir + "/r" + threads;
-    const RunResult v = RunProgram({"validate", "--data", DataDir() + "/Au-Ag", "--methods",
-                                    "eps-pchip,smooth", "--angles", "0", "--threads",
-                                    threads, "--quiet", "--out", out});
+    const RunResult v =
+        RunProgram({"validate", "--data", DataDir() + "/Au-Ag", "--methods", "eps-pchip,smooth",
+                    "--angles", "0", "--threads", threads, "--quiet", "--out", out});
     ASSERT_EQ(v.status, 0) << v.err;
     reports[run] = ReadText(out + "/report.json");
     const std::string model = dir + "/m" + threads + ".json";
@@ -672,7 +676,8 @@ TEST(Validate, TheSameOnOneThreadAsOnSeveral) {
   EXPECT_NE(models[0].find("\"uncertainty\""), std::string::npos);
   EXPECT_EQ(models[0], models[1]);
   EXPECT_EQ(RunProgram({"fit", "--data", DataDir() + "/Au-Ag", "--threads", "-2", "--out",
-                        dir + "/bad.json"}).status,
+                        dir + "/bad.json"})
+                .status,
             2);
 }
 

@@ -24,9 +24,8 @@ constexpr double kGridStepNm = 5.0;
 constexpr double kLambdaToleranceNm = 1e-6;
 
 // IEC 61966-2-1:1999, eq. (5): CIE XYZ (D65, Y = 1) to linear sRGB.
-constexpr Matrix3 kMatrixXYZToSRGB = {{{3.2406, -1.5372, -0.4986},
-                                       {-0.9689, 1.8758, 0.0415},
-                                       {0.0557, -0.2040, 1.0570}}};
+constexpr Matrix3 kMatrixXYZToSRGB = {
+    {{3.2406, -1.5372, -0.4986}, {-0.9689, 1.8758, 0.0415}, {0.0557, -0.2040, 1.0570}}};
 
 // The paper's eq. 6, with its printed two-decimal coefficients.
 constexpr Matrix3 kMatrixXYZToPaperRGB = {
@@ -43,8 +42,7 @@ constexpr double kLabKappa = 24389.0 / 27.0;     // (29/3)^3
 
 constexpr double k25Pow7 = 6103515625.0;  // 25^7, CIEDE2000
 
-constexpr const char* kIlluminantNames[] = {"A", "C",  "D50", "D65",
-                                            "E", "F2", "F11"};
+constexpr const char* kIlluminantNames[] = {"A", "C", "D50", "D65", "E", "F2", "F11"};
 
 Matrix3 Inverse(const Matrix3& m) {
   const double c00 = m[1][1] * m[2][2] - m[1][2] * m[2][1];
@@ -70,8 +68,7 @@ const Matrix3& MatrixSRGBToXYZ() {
 }
 
 std::array<double, 3> Apply(const Matrix3& m, double x, double y, double z) {
-  return {m[0][0] * x + m[0][1] * y + m[0][2] * z,
-          m[1][0] * x + m[1][1] * y + m[1][2] * z,
+  return {m[0][0] * x + m[0][1] * y + m[0][2] * z, m[1][0] * x + m[1][1] * y + m[1][2] * z,
           m[2][0] * x + m[2][1] * y + m[2][2] * z};
 }
 
@@ -85,8 +82,7 @@ std::string Trim(const std::string& s) {
 std::vector<std::string> Split(const std::string& s, char separator) {
   std::vector<std::string> parts;
   std::size_t begin = 0;
-  for (std::size_t end; (end = s.find(separator, begin)) != std::string::npos;
-       begin = end + 1) {
+  for (std::size_t end; (end = s.find(separator, begin)) != std::string::npos; begin = end + 1) {
     parts.push_back(s.substr(begin, end - begin));
   }
   parts.push_back(s.substr(begin));
@@ -100,8 +96,7 @@ std::string FormatNm(double lambda_nm) {
 }
 
 std::string Upper(std::string s) {
-  for (char& c : s)
-    c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  for (char& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
   return s;
 }
 
@@ -138,8 +133,7 @@ Table ReadTable(const std::string& path, const std::string& header) {
     if (line.empty() || line[0] == '#') continue;
     if (!header_seen) {
       if (line != header) {
-        throw Error(where + "expected the header '" + header + "', found '" +
-                    line + "'");
+        throw Error(where + "expected the header '" + header + "', found '" + line + "'");
       }
       header_seen = true;
       continue;
@@ -150,19 +144,18 @@ Table ReadTable(const std::string& path, const std::string& header) {
       char* end = nullptr;
       errno = 0;
       const double value = std::strtod(text.c_str(), &end);
-      if (text.empty() || *end != '\0' || errno == ERANGE ||
-          !std::isfinite(value)) {
+      if (text.empty() || *end != '\0' || errno == ERANGE || !std::isfinite(value)) {
         throw Error(where + "'" + text + "' is not a finite number");
       }
       fields.push_back(value);
     }
     if (fields.size() != columns) {
-      throw Error(where + "expected " + std::to_string(columns) +
-                  " fields, found " + std::to_string(fields.size()));
+      throw Error(where + "expected " + std::to_string(columns) + " fields, found " +
+                  std::to_string(fields.size()));
     }
     if (!table.lambda_nm.empty() && fields[0] <= table.lambda_nm.back()) {
-      throw Error(where + "wavelengths must increase (" + FormatNm(fields[0]) +
-                  " after " + FormatNm(table.lambda_nm.back()) + ")");
+      throw Error(where + "wavelengths must increase (" + FormatNm(fields[0]) + " after " +
+                  FormatNm(table.lambda_nm.back()) + ")");
     }
     for (std::size_t i = 1; i < fields.size(); ++i) {
       if (fields[i] < 0.0) throw Error(where + "negative value");
@@ -179,8 +172,7 @@ Table ReadTable(const std::string& path, const std::string& header) {
 const std::vector<double>& RowAt(const Table& table, double lambda_nm) {
   auto it = std::lower_bound(table.lambda_nm.begin(), table.lambda_nm.end(),
                              lambda_nm - kLambdaToleranceNm);
-  if (it == table.lambda_nm.end() ||
-      std::abs(*it - lambda_nm) > kLambdaToleranceNm) {
+  if (it == table.lambda_nm.end() || std::abs(*it - lambda_nm) > kLambdaToleranceNm) {
     std::ostringstream message;
     message << table.path << ": no row at " << FormatNm(lambda_nm)
             << " (tables must be sampled at every multiple of " << kGridStepNm
@@ -191,9 +183,7 @@ const std::vector<double>& RowAt(const Table& table, double lambda_nm) {
 }
 
 // CIE 15:2004 eq. 8.3-8.6 helper.
-double LabF(double t) {
-  return t > kLabEpsilon ? std::cbrt(t) : (kLabKappa * t + 16.0) / 116.0;
-}
+double LabF(double t) { return t > kLabEpsilon ? std::cbrt(t) : (kLabKappa * t + 16.0) / 116.0; }
 
 double Degrees(double radians) { return radians * (180.0 / kPi); }
 double Radians(double degrees) { return degrees * (kPi / 180.0); }
@@ -219,15 +209,14 @@ std::vector<std::string> IlluminantNames() {
   return {std::begin(kIlluminantNames), std::end(kIlluminantNames)};
 }
 
-Colorimeter Colorimeter::Load(const std::string& data_dir,
-                              const std::string& illuminant, int observer_deg) {
+Colorimeter Colorimeter::Load(const std::string& data_dir, const std::string& illuminant,
+                              int observer_deg) {
   std::string name;
   for (const char* candidate : kIlluminantNames) {
     if (Upper(illuminant) == candidate) name = candidate;
   }
   if (name.empty()) {
-    throw Error("unknown illuminant '" + illuminant +
-                "'; valid names: " + JoinedIlluminantNames());
+    throw Error("unknown illuminant '" + illuminant + "'; valid names: " + JoinedIlluminantNames());
   }
   if (observer_deg != 2 && observer_deg != 10) {
     throw Error("unknown observer " + std::to_string(observer_deg) +
@@ -235,20 +224,16 @@ Colorimeter Colorimeter::Load(const std::string& data_dir,
   }
 
   const std::string cie_dir = data_dir + "/cie/";
-  const Table spd =
-      ReadTable(cie_dir + "illuminant-" + name + ".csv", "lambda_nm,value");
-  const Table cmf = ReadTable(
-      cie_dir + (observer_deg == 2 ? "cmf-1931-2.csv" : "cmf-1964-10.csv"),
-      "lambda_nm,x_bar,y_bar,z_bar");
+  const Table spd = ReadTable(cie_dir + "illuminant-" + name + ".csv", "lambda_nm,value");
+  const Table cmf = ReadTable(cie_dir + (observer_deg == 2 ? "cmf-1931-2.csv" : "cmf-1964-10.csv"),
+                              "lambda_nm,x_bar,y_bar,z_bar");
 
   const double first_nm =
-      std::ceil(std::max(spd.lambda_nm.front(), cmf.lambda_nm.front()) /
-                    kGridStepNm -
+      std::ceil(std::max(spd.lambda_nm.front(), cmf.lambda_nm.front()) / kGridStepNm -
                 kLambdaToleranceNm) *
       kGridStepNm;
   const double last_nm =
-      std::floor(std::min(spd.lambda_nm.back(), cmf.lambda_nm.back()) /
-                     kGridStepNm +
+      std::floor(std::min(spd.lambda_nm.back(), cmf.lambda_nm.back()) / kGridStepNm +
                  kLambdaToleranceNm) *
       kGridStepNm;
   if (first_nm > last_nm) {
@@ -259,8 +244,7 @@ Colorimeter Colorimeter::Load(const std::string& data_dir,
   colorimeter.illuminant_ = name;
   colorimeter.observer_deg_ = observer_deg;
   double y_sum = 0.0;
-  const int count =
-      static_cast<int>(std::lround((last_nm - first_nm) / kGridStepNm)) + 1;
+  const int count = static_cast<int>(std::lround((last_nm - first_nm) / kGridStepNm)) + 1;
   for (int i = 0; i < count; ++i) {
     const double lambda_nm = first_nm + i * kGridStepNm;
     const double power = RowAt(spd, lambda_nm)[0];
@@ -272,11 +256,9 @@ Colorimeter Colorimeter::Load(const std::string& data_dir,
     y_sum += power * bar[1];
   }
   if (!(y_sum > 0.0)) {
-    throw Error(spd.path + ": the illuminant has no power where " + cmf.path +
-                " has y_bar > 0");
+    throw Error(spd.path + ": the illuminant has no power where " + cmf.path + " has y_bar > 0");
   }
-  for (std::vector<double>* w :
-       {&colorimeter.wx_, &colorimeter.wy_, &colorimeter.wz_}) {
+  for (std::vector<double>* w : {&colorimeter.wx_, &colorimeter.wy_, &colorimeter.wz_}) {
     for (double& value : *w) value /= y_sum;
   }
   // The division leaves sum(wy) a few ulps from 1. Setting the last weight to 1
@@ -294,13 +276,11 @@ Colorimeter Colorimeter::Load(const std::string& data_dir,
   return colorimeter;
 }
 
-XYZ Colorimeter::ReflectanceToXYZ(
-    const std::vector<double>& reflectance) const {
+XYZ Colorimeter::ReflectanceToXYZ(const std::vector<double>& reflectance) const {
   if (reflectance.size() != lambda_nm_.size()) {
     throw Error("reflectance has " + std::to_string(reflectance.size()) +
-                " samples; the colorimeter for illuminant " + illuminant_ +
-                " needs " + std::to_string(lambda_nm_.size()) +
-                " (its 5 nm grid)");
+                " samples; the colorimeter for illuminant " + illuminant_ + " needs " +
+                std::to_string(lambda_nm_.size()) + " (its 5 nm grid)");
   }
   return ReflectanceToXYZ(reflectance.data());
 }
@@ -384,8 +364,7 @@ double DeltaE00(const Lab& lab1, const Lab& lab2) {
       delta_h += 360.0;
     }
   }
-  const double delta_big_h =
-      2.0 * std::sqrt(c1 * c2) * std::sin(Radians(0.5 * delta_h));
+  const double delta_big_h = 2.0 * std::sqrt(c1 * c2) * std::sin(Radians(0.5 * delta_h));
 
   // eqs. 12-22: means, weights and rotation.
   const double l_mean = 0.5 * (lab1.L + lab2.L);
@@ -412,9 +391,9 @@ double DeltaE00(const Lab& lab1, const Lab& lab2) {
   static const double kCos6 = std::cos(Radians(6.0)), kSin6 = std::sin(Radians(6.0));
   static const double kCos63 = std::cos(Radians(63.0)), kSin63 = std::sin(Radians(63.0));
   const double t = 1.0 - 0.17 * (c1h * kCos30 + s1h * kSin30) +  // cos(h - 30)
-                   0.24 * c2h +                                   // cos(2h)
-                   0.32 * (c3h * kCos6 - s3h * kSin6) -           // cos(3h + 6)
-                   0.20 * (c4h * kCos63 + s4h * kSin63);          // cos(4h - 63)
+                   0.24 * c2h +                                  // cos(2h)
+                   0.32 * (c3h * kCos6 - s3h * kSin6) -          // cos(3h + 6)
+                   0.20 * (c4h * kCos63 + s4h * kSin63);         // cos(4h - 63)
   const double delta_theta =
       30.0 * std::exp(-((h_mean - 275.0) / 25.0) * ((h_mean - 275.0) / 25.0));
   const double c_mean7 = Pow7(c_mean);

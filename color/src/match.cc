@@ -30,8 +30,7 @@ std::string ModelName(const AlloyModel& model) {
 // golden-section steps; Brent 1973, ch. 5), to kRefineTolerance in x; the ends of the
 // bracket count too, so that a minimum at the model's range is found there. *f_min
 // receives f at the minimum.
-double BrentMinimum(const std::function<double(double)>& f, double lo, double hi,
-                    double* f_min) {
+double BrentMinimum(const std::function<double(double)>& f, double lo, double hi, double* f_min) {
   constexpr double kGolden = 0.3819660112501051;  // (3 - sqrt 5) / 2
   double a = lo, b = hi;
   double x = a + kGolden * (b - a), w = x, v = x;
@@ -47,7 +46,10 @@ double BrentMinimum(const std::function<double(double)>& f, double lo, double hi
       double q = (x - v) * (fx - fw);
       double p = (x - v) * q - (x - w) * r;
       q = 2 * (q - r);
-      if (q > 0) p = -p; else q = -q;
+      if (q > 0)
+        p = -p;
+      else
+        q = -q;
       const double e_before = e;
       e = d;
       if (std::abs(p) < std::abs(0.5 * q * e_before) && p > q * (a - x) && p < q * (b - x)) {
@@ -108,8 +110,12 @@ std::vector<Match> Minimise(const std::vector<double>& scan_x, const std::vector
     // The square of the distance: smooth where the target lies on the model's curve (the
     // distance itself has a corner there), with the same minimum.
     double d2 = 0;
-    m.x_atomic = BrentMinimum([&](double x) { const double d = exact(x); return d * d; }, lo,
-                              hi, &d2);
+    m.x_atomic = BrentMinimum(
+        [&](double x) {
+          const double d = exact(x);
+          return d * d;
+        },
+        lo, hi, &d2);
     if (!std::isfinite(d2)) continue;
     m.de00 = std::sqrt(d2);  // the objective; the caller renames it for spectra
     found.push_back(m);
@@ -228,8 +234,7 @@ std::vector<Match> ColourMatcher::FindReflectance(const std::vector<double>& lam
   std::vector<double> grid, target;
   for (size_t i = 0; i < lambda_nm.size(); ++i) {
     if (!std::isfinite(reflectance[i]) || !std::isfinite(lambda_nm[i])) {
-      throw Error(source + ": the reflectance at row " + std::to_string(i + 1) +
-                  " is not finite");
+      throw Error(source + ": the reflectance at row " + std::to_string(i + 1) + " is not finite");
     }
     if (lambda_nm[i] >= model_.lambda_min_nm() - 1e-9 &&
         lambda_nm[i] <= model_.lambda_max_nm() + 1e-9) {
@@ -264,8 +269,8 @@ std::vector<Match> ColourMatcher::FindReflectance(const std::vector<double>& lam
           std::upper_bound(lambda_nm.begin(), lambda_nm.end(), l) - lambda_nm.begin(),
           lambda_nm.size() - 1);
       const size_t i0 = j == 0 ? 0 : j - 1;
-      const double t = lambda_nm[j] > lambda_nm[i0]
-                           ? (l - lambda_nm[i0]) / (lambda_nm[j] - lambda_nm[i0]) : 0.0;
+      const double t =
+          lambda_nm[j] > lambda_nm[i0] ? (l - lambda_nm[i0]) / (lambda_nm[j] - lambda_nm[i0]) : 0.0;
       r[i] = reflectance[i0] + t * (reflectance[j] - reflectance[i0]);
     }
     target_lab = LabFromXYZ(colorimeter_.ReflectanceToXYZ(r), colorimeter_.White());
@@ -296,8 +301,8 @@ Lab LabFromTargetXYZ(const Colorimeter& colorimeter, const XYZ& xyz) {
 Lab LabFromHex(const Colorimeter& colorimeter, const std::string& hex) {
   std::string digits = hex;
   if (!digits.empty() && digits.front() == '#') digits.erase(0, 1);
-  if (digits.size() != 6 ||
-      !std::all_of(digits.begin(), digits.end(), [](unsigned char c) { return std::isxdigit(c); })) {
+  if (digits.size() != 6 || !std::all_of(digits.begin(), digits.end(),
+                                         [](unsigned char c) { return std::isxdigit(c); })) {
     throw Error("colour " + Quote(hex) + " is not '#rrggbb' (six hexadecimal digits)");
   }
   double channel[3];
@@ -362,8 +367,8 @@ ToleranceWindow Tolerance(const std::vector<Colorimeter>& colorimeters, const Al
     bool clipped = true;
     size_t which = 0;
     while (direction * (end - inside) > 0) {
-      const double next =
-          direction < 0 ? std::max(end, inside - kToleranceStep) : std::min(end, inside + kToleranceStep);
+      const double next = direction < 0 ? std::max(end, inside - kToleranceStep)
+                                        : std::min(end, inside + kToleranceStep);
       if (worst(next, &which) > options.de00) {
         double in = inside, out = next;
         while (std::abs(out - in) > kBisectTolerance) {

@@ -22,15 +22,15 @@ ColorResult ColorFromXYZ(const Colorimeter& colorimeter, const XYZ& xyz) {
   return c;
 }
 
-std::vector<double> EvaluationGrid(const Colorimeter& colorimeter, double lo_nm,
-                                   double hi_nm, const std::string& what) {
+std::vector<double> EvaluationGrid(const Colorimeter& colorimeter, double lo_nm, double hi_nm,
+                                   const std::string& what) {
   const std::vector<double>& grid = colorimeter.lambda_nm();
   const double need_lo = std::max(kVisibleMinNm, grid.front());
   const double need_hi = std::min(kVisibleMaxNm, grid.back());
   if (lo_nm > need_lo + 1e-9 || hi_nm < need_hi - 1e-9) {
     std::ostringstream msg;
-    msg << what << ": covers " << lo_nm << "-" << hi_nm << " nm; colour needs "
-        << need_lo << "-" << need_hi << " nm";
+    msg << what << ": covers " << lo_nm << "-" << hi_nm << " nm; colour needs " << need_lo << "-"
+        << need_hi << " nm";
     throw Error(msg.str());
   }
   std::vector<double> held(grid.size());
@@ -40,8 +40,8 @@ std::vector<double> EvaluationGrid(const Colorimeter& colorimeter, double lo_nm,
 
 std::vector<std::complex<double>> IndexOnGrid(const Colorimeter& colorimeter,
                                               const NkSpectrum& nk) {
-  const std::vector<double> grid = EvaluationGrid(colorimeter, nk.lambda_min_nm(),
-                                                  nk.lambda_max_nm(), nk.source);
+  const std::vector<double> grid =
+      EvaluationGrid(colorimeter, nk.lambda_min_nm(), nk.lambda_max_nm(), nk.source);
   std::vector<std::complex<double>> index(grid.size());
   for (size_t i = 0; i < grid.size(); ++i) index[i] = NkAt(nk, grid[i]);
   return index;
@@ -66,8 +66,8 @@ std::vector<double> ReflectanceSpectrum(const std::vector<std::complex<double>>&
   return r;
 }
 
-XYZ MaterialXYZ(const Colorimeter& colorimeter,
-                const std::vector<std::complex<double>>& index, double angle_deg) {
+XYZ MaterialXYZ(const Colorimeter& colorimeter, const std::vector<std::complex<double>>& index,
+                double angle_deg) {
   return colorimeter.ReflectanceToXYZ(ReflectanceSpectrum(index, angle_deg));
 }
 
@@ -95,8 +95,8 @@ nlohmann::json ColorJson(const ColorResult& c) {
 
 namespace alloycolor::color {
 
-double DeltaE00Sigma(const Colorimeter& colorimeter, const AlloyModel& model,
-                     double x_atomic, double angle_deg, int draws) {
+double DeltaE00Sigma(const Colorimeter& colorimeter, const AlloyModel& model, double x_atomic,
+                     double angle_deg, int draws) {
   return DeltaE00Sigma(colorimeter, model, x_atomic, std::vector<double>{angle_deg}, draws)[0];
 }
 

@@ -56,9 +56,9 @@ void NormalReflectanceSums(std::size_t m, const double* __restrict eps1,
 // where its is; S = 0 (then T = 1) where eps = sin^2.
 ALLOYCOLOR_SIMD_CLONES
 void ObliqueReflectanceSums(std::size_t m, const double* __restrict eps1,
-                            const double* __restrict eps2, double c,
-                            const double* __restrict wx, const double* __restrict wy,
-                            const double* __restrict wz, double sums[3]) {
+                            const double* __restrict eps2, double c, const double* __restrict wx,
+                            const double* __restrict wy, const double* __restrict wz,
+                            double sums[3]) {
   const double sin2 = 1.0 - c * c;
   double sx = 0, sy = 0, sz = 0;
   ALLOYCOLOR_LANE_SUMS

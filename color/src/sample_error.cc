@@ -63,9 +63,9 @@ SampleError ErrorAgainstSample(const Colorimeter& colorimeter, const AlloyModel&
     return e;  // the sample has no colour
   }
   const Lab truth = LabFromXYZ(MaterialXYZ(colorimeter, measured_index, 0.0), colorimeter.White());
-  const Lab model_lab = LabFromXYZ(
-      MaterialXYZ(colorimeter, IndexOnGrid(colorimeter, model, sample.x_atomic), 0.0),
-      colorimeter.White());
+  const Lab model_lab =
+      LabFromXYZ(MaterialXYZ(colorimeter, IndexOnGrid(colorimeter, model, sample.x_atomic), 0.0),
+                 colorimeter.White());
   e.delta_e00 = DeltaE00(truth, model_lab);
   return e;
 }

@@ -6,9 +6,9 @@
 #include <sstream>
 
 #include "alloycolor/color/material_color.h"
+#include "alloycolor/color/reflectance_arrays.h"
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/units.h"
-#include "alloycolor/color/reflectance_arrays.h"
 
 namespace alloycolor::color {
 namespace {

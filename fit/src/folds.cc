@@ -32,21 +32,24 @@ std::vector<Fold> FitFolds(const MethodInfo& method, const Dataset& dataset,
   inner.parent = &model;
   inner.start = method.traits.warm_start_folds ? &model : nullptr;
   std::vector<Fold> folds(xs.size());
-  ParallelTasks(xs.size(), [&](size_t k) {
-    Fold& f = folds[k];
-    f.x = xs[k];
-    const Dataset training = WithoutSamples(dataset, {f.x});
-    try {
-      f.model = BuildWithFolds(method, training, inner, nullptr);
-    } catch (const Error& e) {
-      f.error = e.what();
-      return;
-    }
-    for (const Sample& s : dataset.samples) {
-      if (s.x_atomic == f.x) f.held.push_back(&s);
-    }
-    f.compositions = DistinctCompositions(training);
-  }, settings.threads);
+  ParallelTasks(
+      xs.size(),
+      [&](size_t k) {
+        Fold& f = folds[k];
+        f.x = xs[k];
+        const Dataset training = WithoutSamples(dataset, {f.x});
+        try {
+          f.model = BuildWithFolds(method, training, inner, nullptr);
+        } catch (const Error& e) {
+          f.error = e.what();
+          return;
+        }
+        for (const Sample& s : dataset.samples) {
+          if (s.x_atomic == f.x) f.held.push_back(&s);
+        }
+        f.compositions = DistinctCompositions(training);
+      },
+      settings.threads);
   return folds;
 }
 
@@ -86,8 +89,8 @@ MethodScore ScoreFolds(const std::string& method, std::vector<Fold>& folds,
     failed += fold_failed;
   }
   if (failed > 0) {
-    score.error = "failed on " + std::to_string(failed) + " of " + std::to_string(folds.size()) +
-                  " folds";
+    score.error =
+        "failed on " + std::to_string(failed) + " of " + std::to_string(folds.size()) + " folds";
   } else {
     score.mean = score.folds > 0 ? sum / score.folds : 0;
   }
@@ -109,8 +112,7 @@ void AddFolds(const MethodInfo& method, const Dataset& dataset, const FitSetting
 }
 
 std::unique_ptr<AlloyModel> BuildWithFolds(const MethodInfo& method, const Dataset& dataset,
-                                           const FitSettings& settings,
-                                           std::vector<Fold>* folds) {
+                                           const FitSettings& settings, std::vector<Fold>* folds) {
   std::unique_ptr<AlloyModel> model = Build(method, dataset, settings);
   if (!settings.fold) RecordInSampleError(dataset, settings, model.get());
   std::vector<Fold> own;

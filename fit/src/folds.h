@@ -7,10 +7,9 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "alloycolor/color/colorimetry.h"
 #include "alloycolor/core/dataset.h"
@@ -55,7 +54,7 @@ std::vector<double> ErrorFolds(const Dataset& dataset);
 struct Fold {
   double x = 0;
   std::unique_ptr<AlloyModel> model;
-  std::string error;                 // why model is null
+  std::string error;  // why model is null
   std::vector<const Sample*> held;
   std::vector<double> compositions;  // of the fold's training samples
 };
@@ -84,8 +83,7 @@ void AddFolds(const MethodInfo& method, const Dataset& dataset, const FitSetting
 // `method` built on the data set; with `folds` (or settings.calibrate) the leave-one-out
 // folds too, and with settings.calibrate its prediction error from them.
 std::unique_ptr<AlloyModel> BuildWithFolds(const MethodInfo& method, const Dataset& dataset,
-                                           const FitSettings& settings,
-                                           std::vector<Fold>* folds);
+                                           const FitSettings& settings, std::vector<Fold>* folds);
 
 // The model's prediction error (alloy_model.h PredictionError) from its folds, its
 // in-sample misfit and the data's precision (prediction_error.cc); sets each fold model's

@@ -24,10 +24,10 @@ std::unique_ptr<AlloyModel> BuildModel(const std::string& method, const Dataset&
     std::string files;
     for (const Sample& s : dataset.samples) files += (files.empty() ? "" : ", ") + s.file;
     throw Error(dataset.manifest_path + ": a model needs samples at two compositions at least; " +
-                (dataset.samples.empty() ? std::string("there are none")
-                                         : "every sample is at x = " +
-                                               FormatNumber(dataset.samples.front().x_given) +
-                                               " (" + files + ")"));
+                (dataset.samples.empty()
+                     ? std::string("there are none")
+                     : "every sample is at x = " + FormatNumber(dataset.samples.front().x_given) +
+                           " (" + files + ")"));
   }
   if (method == kAutoMethod) return BuildAuto(dataset, settings);
   AttachBuiltInBuilders();

@@ -153,8 +153,8 @@ double EndFactor(const std::vector<FoldErrors>& errors) {
   if (folds_of[0] == 0 || folds_of[1] == 0) return 1;
   // Shrunk towards 1 as few folds say little: weight k / (k + 2), k the smaller group.
   const double k = std::min(folds_of[0], folds_of[1]);
-  return std::clamp(
-      std::exp(k / (k + 2) * (log_sum[1] / folds_of[1] - log_sum[0] / folds_of[0])), 1.0, 10.0);
+  return std::clamp(std::exp(k / (k + 2) * (log_sum[1] / folds_of[1] - log_sum[0] / folds_of[0])),
+                    1.0, 10.0);
 }
 
 // The interpolation error's scale from the folds (nothing where no fold could be used),
@@ -288,13 +288,13 @@ void RecordInSampleError(const Dataset& dataset, const FitSettings& settings, Al
                : row.reflectance_rms > kInSampleMissReflectance) {
       char what[200];
       if (colour) {
-        std::snprintf(what, sizeof what, "by CIEDE2000 %.3g (reflectance RMS %.3g)",
-                      row.delta_e00, row.reflectance_rms);
+        std::snprintf(what, sizeof what, "by CIEDE2000 %.3g (reflectance RMS %.3g)", row.delta_e00,
+                      row.reflectance_rms);
       } else {
         std::snprintf(what, sizeof what, "by reflectance RMS %.3g", row.reflectance_rms);
       }
-      model->AddWarning(model->method() + " misses its own sample " + s.file + " (x = " +
-                        FormatNumber(s.x_atomic) + ") " + what +
+      model->AddWarning(model->method() + " misses its own sample " + s.file +
+                        " (x = " + FormatNumber(s.x_atomic) + ") " + what +
                         "; its one-sigma there covers the miss");
     }
     rows.push_back(std::move(row));

@@ -20,10 +20,9 @@ constexpr int kCandidateIterations = 100;  // a physical degree candidate's solv
 // nearly linear): the degree kept unless leave-one-out finds another clearly better.
 constexpr int kPreferredDegree = 2;
 
-
 // `model` (`method` built on the data set) with its folds, scored on them.
-Scored ScoreWithFolds(const MethodInfo& method, const Dataset& dataset,
-                      const FitSettings& settings, std::unique_ptr<AlloyModel> model) {
+Scored ScoreWithFolds(const MethodInfo& method, const Dataset& dataset, const FitSettings& settings,
+                      std::unique_ptr<AlloyModel> model) {
   Scored r;
   r.score.method = method.name;
   try {
@@ -38,8 +37,7 @@ Scored ScoreWithFolds(const MethodInfo& method, const Dataset& dataset,
   return r;
 }
 
-Scored BuildScored(const MethodInfo& method, const Dataset& dataset,
-                   const FitSettings& settings) {
+Scored BuildScored(const MethodInfo& method, const Dataset& dataset, const FitSettings& settings) {
   std::unique_ptr<AlloyModel> model;
   try {
     model = Build(method, dataset, settings);
@@ -114,8 +112,7 @@ Choice ChooseSimplest(const std::vector<Scored>& candidates, bool squared = fals
 // RMS of a model's error on the samples it was fitted to, over those its folds hold out
 // (ErrorFolds), in the metric ScoreFolds uses: CIEDE2000 at normal incidence, or for data
 // without colour the reflectance RMS over the sample's wavelengths inside the model's range.
-double OwnErrorRms(const AlloyModel& model, const Dataset& dataset,
-                   const color::Colorimeter& cm) {
+double OwnErrorRms(const AlloyModel& model, const Dataset& dataset, const color::Colorimeter& cm) {
   const std::vector<double> held = ErrorFolds(dataset);
   double sum = 0;
   int count = 0;
@@ -245,8 +242,7 @@ Scored BuildChoosingDegree(const MethodInfo& method, const Dataset& dataset,
   char reason[200];
   std::snprintf(reason, sizeof reason, "leave-one-out RMS %s %.4g over %d folds%s%s",
                 chosen.metric.c_str(), Rms(chosen.values), chosen.score.folds,
-                c.rule.empty() ? ", the lowest" : ", Nordheim's degree 2 within ",
-                c.rule.c_str());
+                c.rule.empty() ? ", the lowest" : ", Nordheim's degree 2 within ", c.rule.c_str());
   FitSummary summary = chosen.model->fit_summary();
   nlohmann::json table = nlohmann::json::array();
   for (size_t i = 0; i < candidates.size(); ++i) {
@@ -325,7 +321,6 @@ bool ChoosesDegree(const MethodInfo& method, const FitSettings& settings) {
   return method.traits.chooses_degree && settings.degree < 0 && !settings.fold;
 }
 
-
 namespace {
 
 // The model's larger in-sample error at the two end compositions, which no fold holds
@@ -353,16 +348,15 @@ std::string ChoiceReason(const MethodSelection& selection, const Choice& c,
   const std::string& best_name = order[c.best]->name;
   char reason[320];
   if (c.rule.empty()) {
-    std::snprintf(reason, sizeof reason,
-                  "%s: lowest mean %s, %.4g over %d held-out samples",
+    std::snprintf(reason, sizeof reason, "%s: lowest mean %s, %.4g over %d held-out samples",
                   chosen_name.c_str(), selection.metric.c_str(), chosen_score.mean,
                   chosen_score.folds);
   } else if (c.rule == "one fold") {
     std::snprintf(reason, sizeof reason,
                   "%s: one fold (three compositions) compares the straight lines between the "
                   "ends, not the curves through three samples; %s scored %.4g, %s %.4g",
-                  chosen_name.c_str(), chosen_name.c_str(), chosen_score.mean,
-                  best_name.c_str(), best_score.mean);
+                  chosen_name.c_str(), chosen_name.c_str(), chosen_score.mean, best_name.c_str(),
+                  best_score.mean);
   } else if (c.rule == "the ends' own samples") {
     std::snprintf(reason, sizeof reason,
                   "%s: mean %s %.4g over %d held-out samples, within the folds' tolerance of "

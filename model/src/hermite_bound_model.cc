@@ -90,10 +90,10 @@ void HermiteBoundModel::Permittivity(double x, double* eps1, double* eps2) const
   const double w0 = 2 * t3 - 3 * t2 + 1, w1 = (t3 - 2 * t2 + t) * h, w2 = -2 * t3 + 3 * t2,
                w3 = (t3 - t2) * h;
   const Knot &a = knots_[lo], &b = knots_[hi];
-  WeightedSum(m, w0, a.eps1.data(), w1, a.slope1.data(), w2, b.eps1.data(), w3,
-              b.slope1.data(), eps1);
-  WeightedSum(m, w0, a.eps2.data(), w1, a.slope2.data(), w2, b.eps2.data(), w3,
-              b.slope2.data(), eps2);
+  WeightedSum(m, w0, a.eps1.data(), w1, a.slope1.data(), w2, b.eps1.data(), w3, b.slope1.data(),
+              eps1);
+  WeightedSum(m, w0, a.eps2.data(), w1, a.slope2.data(), w2, b.eps2.data(), w3, b.slope2.data(),
+              eps2);
   Finish(eps1, eps2);
 }
 

@@ -12,7 +12,6 @@ namespace alloycolor {
 
 namespace {
 
-
 struct KindName {
   TermKind kind;
   const char* name;
@@ -373,8 +372,9 @@ ParameterTable PhysicalModel::Parameters(const std::vector<double>& xs) const {
   for (int t = 1; t < layout_.num_terms(); ++t) {
     const std::string p = "t" + std::to_string(t) + ":";
     const bool gap = layout_.term_kind(t) == TermKind::kRiouxGap;
-    table.notes.push_back(p + " " + TermKindName(layout_.term_kind(t)) +
-                          (gap ? " (E0 absorption onset, Eg gap, G width)" : " (E0 centre, G width)"));
+    table.notes.push_back(
+        p + " " + TermKindName(layout_.term_kind(t)) +
+        (gap ? " (E0 absorption onset, Eg gap, G width)" : " (E0 centre, G width)"));
     table.columns.push_back(p + "E0_eV");
     table.columns.push_back(p + "E0_nm");
     if (gap) table.columns.push_back(p + "Eg_eV");

@@ -8,11 +8,11 @@
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/grid.h"
 #include "alloycolor/core/io.h"
+#include "alloycolor/core/simd.h"
 #include "alloycolor/core/text.h"
 #include "alloycolor/core/units.h"
 #include "alloycolor/model/interpolation.h"
 #include "alloycolor/model/optics.h"
-#include "alloycolor/core/simd.h"
 #include "hermite_bound_model.h"
 
 namespace alloycolor {
@@ -116,8 +116,8 @@ class BoundPaperModel : public BoundModel {
     const bool between = all.t >= 0 && all.t <= 1;
     if (between) {
       PaperDrude(m, all.t, kPlasmaEv2M3 * n_e, &taus_[all.lo * m], &taus_[all.hi * m],
-                 &masses_[all.lo * m], &masses_[all.hi * m], omega_ev_.data(),
-                 inv_omega_ev_.data(), eps1, eps2);
+                 &masses_[all.lo * m], &masses_[all.hi * m], omega_ev_.data(), inv_omega_ev_.data(),
+                 eps1, eps2);
       for (size_t i : irregular_) Scalar(x, n_e, all, i, eps1, eps2);
     } else {
       for (size_t i = 0; i < m; ++i) Scalar(x, n_e, all, i, eps1, eps2);
@@ -490,13 +490,13 @@ nlohmann::json SampleModel::ParametersJson() const {
                        {"n", node.nk.n},
                        {"k", node.nk.k}});
   }
-  const char* interpolation = kind_ == Kind::kPaper      ? "tau and m* linear in x (eq. 11, 12, 7)"
-                              : kind_ == Kind::kEpsLinear ? "eps linear in x"
-                              : kind_ == Kind::kEpsPchip
-                                  ? "eps1, eps2 monotone cubic (PCHIP) in x"
-                                  : "eps1, eps2 natural cubic spline in x, eps2 held at 0 from below";
-  return {{"interpolation", interpolation},
-          {"samples", samples}};
+  const char* interpolation =
+      kind_ == Kind::kPaper       ? "tau and m* linear in x (eq. 11, 12, 7)"
+      : kind_ == Kind::kEpsLinear ? "eps linear in x"
+      : kind_ == Kind::kEpsPchip
+          ? "eps1, eps2 monotone cubic (PCHIP) in x"
+          : "eps1, eps2 natural cubic spline in x, eps2 held at 0 from below";
+  return {{"interpolation", interpolation}, {"samples", samples}};
 }
 
 }  // namespace alloycolor

@@ -103,8 +103,8 @@ void SmoothModel::Validate(const std::string& source) {
   for (size_t j = 0; j < grid_nm_.size(); ++j) {
     if (!std::isfinite(grid_nm_[j]) || grid_nm_[j] <= 0 ||
         (j > 0 && !(grid_nm_[j] > grid_nm_[j - 1]))) {
-      throw Error(where + "lambda_nm: must be positive and increasing (entry " +
-                  std::to_string(j) + ")");
+      throw Error(where + "lambda_nm: must be positive and increasing (entry " + std::to_string(j) +
+                  ")");
     }
   }
   if (grid_nm_.front() < lambda_min_nm() || grid_nm_.back() > lambda_max_nm()) {

@@ -243,22 +243,22 @@ py::dict ModelMatch(const AlloyModel& model, const Array& lab_in, double angle_d
     constexpr int kBlock = 2048;
     ParallelFor(static_cast<int>(n), kBlock, !sigma && n >= 2 * kBlock ? ThreadCount(0) : 1,
                 [&](int begin, int end) {
-      const color::ColourMatcher matcher(colorimeter, model, options);
-      for (py::ssize_t i = begin; i < end; ++i) {
-        std::vector<color::Match> found =
-            matcher.Find({in[3 * i], in[3 * i + 1], in[3 * i + 2]});
-        const color::Match& best = found.front();
-        px[i] = best.x_atomic;
-        ps[i] = best.x_sigma;
-        pd[i] = best.de00;
-        pl[3 * i] = best.lab.L;
-        pl[3 * i + 1] = best.lab.a;
-        pl[3 * i + 2] = best.lab.b;
-        pr[i] = best.de00 <= color::kReachableDeltaE00;
-        pm[i] = static_cast<int>(found.size());
-        if (all_minima) every[i] = std::move(found);
-      }
-    });
+                  const color::ColourMatcher matcher(colorimeter, model, options);
+                  for (py::ssize_t i = begin; i < end; ++i) {
+                    std::vector<color::Match> found =
+                        matcher.Find({in[3 * i], in[3 * i + 1], in[3 * i + 2]});
+                    const color::Match& best = found.front();
+                    px[i] = best.x_atomic;
+                    ps[i] = best.x_sigma;
+                    pd[i] = best.de00;
+                    pl[3 * i] = best.lab.L;
+                    pl[3 * i + 1] = best.lab.a;
+                    pl[3 * i + 2] = best.lab.b;
+                    pr[i] = best.de00 <= color::kReachableDeltaE00;
+                    pm[i] = static_cast<int>(found.size());
+                    if (all_minima) every[i] = std::move(found);
+                  }
+                });
   }
   py::dict d;
   d["x"] = x;
@@ -471,8 +471,10 @@ PYBIND11_MODULE(_alloycolor, m) {
   m.attr("_max_fit_grid_nodes") = kMaxFitGridNodes;
   m.attr("_max_tile_size") = render::kMaxTileSize;
   // The library's check of a number against a range, named as the caller gave it.
-  m.def("_check_number", [](const std::string& name, double value, double lo, double hi,
-                            bool whole) { CheckNumber(name, value, NumberRange{lo, hi, whole}); });
+  m.def("_check_number",
+        [](const std::string& name, double value, double lo, double hi, bool whole) {
+          CheckNumber(name, value, NumberRange{lo, hi, whole});
+        });
 
   // The library's checks of the fit's numeric settings, by their names ("degree", ...).
   // `label` is the keyword the value was given as ("degree", "lambda_range_nm[2] (step)").

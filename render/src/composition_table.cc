@@ -9,8 +9,8 @@
 
 #include "alloycolor/color/material_color.h"
 #include "alloycolor/core/error.h"
-#include "alloycolor/core/units.h"
 #include "alloycolor/core/parallel.h"
+#include "alloycolor/core/units.h"
 
 namespace alloycolor::render {
 namespace {

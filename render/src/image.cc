@@ -9,9 +9,9 @@
 #include <cstring>
 #include <limits>
 
+#include "alloycolor/color/colorimetry.h"
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/io.h"
-#include "alloycolor/color/colorimetry.h"
 
 namespace alloycolor::render {
 namespace {

@@ -7,8 +7,8 @@
 #include <utility>
 
 #include "alloycolor/core/error.h"
-#include "alloycolor/core/units.h"
 #include "alloycolor/core/parallel.h"
+#include "alloycolor/core/units.h"
 
 namespace alloycolor::render {
 namespace {
@@ -109,7 +109,7 @@ class Geometry {
   // from within kTraceEpsilon of the surface to about kTraceEpsilon^2 / kRingTubeRadius
   // unless the ray grazes.
   struct RingRay {
-    Vec3 origin;    // in the ring's frame; the ray is origin + s dir_, z = -s in the world
+    Vec3 origin;  // in the ring's frame; the ray is origin + s dir_, z = -s in the world
     double s, s_hi;
     int step;
   };
@@ -170,9 +170,8 @@ class Geometry {
           s[lane] += d[lane];
           if (++steps[lane] < kTraceSteps && s[lane] <= s_hi[lane]) continue;
         } else {
-          hits[ray_of[lane]] =
-              FinishRing(RingRay{{ox[lane], oy[lane], oz[lane]}, s[lane], s_hi[lane], steps[lane]},
-                         d[lane]);
+          hits[ray_of[lane]] = FinishRing(
+              RingRay{{ox[lane], oy[lane], oz[lane]}, s[lane], s_hi[lane], steps[lane]}, d[lane]);
         }
         busy -= !load(lane);
       }
@@ -403,80 +402,79 @@ std::unique_ptr<internal::TilePlan> TraceTile(const RenderOptions& options,
   constexpr int kRows = internal::TilePlan::kRows;
   plan->pixels.resize(static_cast<std::size_t>(size) * size);
   plan->blocks.resize((size + kRows - 1) / kRows);
-  ParallelFor(
-      size, kRows, ThreadCount(options.threads), [&](int row_begin, int row_end) {
-        internal::TileBlock& block = plan->blocks[row_begin / kRows];
-        TileTracer tracer(options.shape, size);
-        // Hits at the pixel corners of rows row_begin..row_end.
-        const int stride = size + 1;
-        std::vector<CornerHit> corners(static_cast<std::size_t>(row_end - row_begin + 1) * stride);
-        for (int j = row_begin; j <= row_end; ++j) {
-          const std::vector<Hit>& row = tracer.Row(0.0, j, stride);
-          for (int i = 0; i <= size; ++i) {
-            corners[static_cast<std::size_t>(j - row_begin) * stride + i] = {row[i].hit, row[i].t};
+  ParallelFor(size, kRows, ThreadCount(options.threads), [&](int row_begin, int row_end) {
+    internal::TileBlock& block = plan->blocks[row_begin / kRows];
+    TileTracer tracer(options.shape, size);
+    // Hits at the pixel corners of rows row_begin..row_end.
+    const int stride = size + 1;
+    std::vector<CornerHit> corners(static_cast<std::size_t>(row_end - row_begin + 1) * stride);
+    for (int j = row_begin; j <= row_end; ++j) {
+      const std::vector<Hit>& row = tracer.Row(0.0, j, stride);
+      for (int i = 0; i <= size; ++i) {
+        corners[static_cast<std::size_t>(j - row_begin) * stride + i] = {row[i].hit, row[i].t};
+      }
+    }
+    std::vector<PixelTerm> hits;
+    std::vector<Hit> centres;
+    for (int j = row_begin; j < row_end; ++j) {
+      const CornerHit* top = &corners[static_cast<std::size_t>(j - row_begin) * stride];
+      const CornerHit* bottom = top + stride;
+      centres = tracer.Row(0.5, j + 0.5, size);
+      for (int i = 0; i < size; ++i) {
+        PixelTerm& pixel = plan->pixels[static_cast<std::size_t>(j) * size + i];
+        const Hit& centre = centres[i];
+        bool edge = false;
+        for (const CornerHit* corner : {&top[i], &top[i + 1], &bottom[i], &bottom[i + 1]}) {
+          if (corner->hit != centre.hit ||
+              (centre.hit && std::abs(corner->t - centre.t) > kDepthJump)) {
+            edge = true;
           }
         }
-        std::vector<PixelTerm> hits;
-        std::vector<Hit> centres;
-        for (int j = row_begin; j < row_end; ++j) {
-          const CornerHit* top = &corners[static_cast<std::size_t>(j - row_begin) * stride];
-          const CornerHit* bottom = top + stride;
-          centres = tracer.Row(0.5, j + 0.5, size);
-          for (int i = 0; i < size; ++i) {
-            PixelTerm& pixel = plan->pixels[static_cast<std::size_t>(j) * size + i];
-            const Hit& centre = centres[i];
-            bool edge = false;
-            for (const CornerHit* corner : {&top[i], &top[i + 1], &bottom[i], &bottom[i + 1]}) {
-              if (corner->hit != centre.hit ||
-                  (centre.hit && std::abs(corner->t - centre.t) > kDepthJump)) {
-                edge = true;
-              }
-            }
-            if (!edge) {
-              if (centre.hit) {
-                pixel = {static_cast<float>(cosine(centre)), static_cast<float>(light(centre))};
-              } else {
-                pixel = {internal::kBackdropMu,
-                         transparent ? 0.0f : static_cast<float>(backdrop(i + 0.5, j + 0.5))};
-              }
-              continue;
-            }
-            const std::vector<Hit>& samples = tracer.Samples(i, j);
-            hits.clear();
-            double background = 0.0;
-            for (std::size_t k = 0; k < samples.size(); ++k) {
-              const Hit& hit = samples[k];
-              if (hit.hit) {
-                hits.push_back({static_cast<float>(cosine(hit)), static_cast<float>(light(hit))});
-              } else if (!transparent) {
-                background += backdrop(tracer.Px(k), tracer.Py(k));
-              }
-            }
-            const int total = kEdgeSamples * kEdgeSamples;
-            const int count = static_cast<int>(hits.size());
-            const double coverage = static_cast<double>(count) / total;
-            // The object's colour is the mean of its samples' (in uniform light exactly the
-            // centre ray's when it hits), blended with the backdrop by the coverage.
-            const double share = transparent ? 1.0 : coverage;
-            internal::OutlinePixel outline;
-            outline.first = static_cast<int>(block.samples.size());
-            if (uniform && centre.hit) {
-              block.samples.push_back({static_cast<float>(cosine(centre)), static_cast<float>(share)});
-            } else {
-              for (const PixelTerm& hit : hits) {
-                block.samples.push_back({hit.mu, static_cast<float>(share * hit.weight / count)});
-              }
-            }
-            outline.count = static_cast<int>(block.samples.size()) - outline.first;
-            const int misses = total - count;
-            outline.background =
-                misses > 0 ? static_cast<float>((1.0 - coverage) * background / misses) : 0.0f;
-            outline.alpha = transparent ? static_cast<float>(coverage) : 1.0f;
-            block.outline.push_back(outline);
-            pixel = {internal::kOutlineMu, 0.0f};
+        if (!edge) {
+          if (centre.hit) {
+            pixel = {static_cast<float>(cosine(centre)), static_cast<float>(light(centre))};
+          } else {
+            pixel = {internal::kBackdropMu,
+                     transparent ? 0.0f : static_cast<float>(backdrop(i + 0.5, j + 0.5))};
+          }
+          continue;
+        }
+        const std::vector<Hit>& samples = tracer.Samples(i, j);
+        hits.clear();
+        double background = 0.0;
+        for (std::size_t k = 0; k < samples.size(); ++k) {
+          const Hit& hit = samples[k];
+          if (hit.hit) {
+            hits.push_back({static_cast<float>(cosine(hit)), static_cast<float>(light(hit))});
+          } else if (!transparent) {
+            background += backdrop(tracer.Px(k), tracer.Py(k));
           }
         }
-      });
+        const int total = kEdgeSamples * kEdgeSamples;
+        const int count = static_cast<int>(hits.size());
+        const double coverage = static_cast<double>(count) / total;
+        // The object's colour is the mean of its samples' (in uniform light exactly the
+        // centre ray's when it hits), blended with the backdrop by the coverage.
+        const double share = transparent ? 1.0 : coverage;
+        internal::OutlinePixel outline;
+        outline.first = static_cast<int>(block.samples.size());
+        if (uniform && centre.hit) {
+          block.samples.push_back({static_cast<float>(cosine(centre)), static_cast<float>(share)});
+        } else {
+          for (const PixelTerm& hit : hits) {
+            block.samples.push_back({hit.mu, static_cast<float>(share * hit.weight / count)});
+          }
+        }
+        outline.count = static_cast<int>(block.samples.size()) - outline.first;
+        const int misses = total - count;
+        outline.background =
+            misses > 0 ? static_cast<float>((1.0 - coverage) * background / misses) : 0.0f;
+        outline.alpha = transparent ? static_cast<float>(coverage) : 1.0f;
+        block.outline.push_back(outline);
+        pixel = {internal::kOutlineMu, 0.0f};
+      }
+    }
+  });
   return plan;
 }
 
@@ -486,8 +484,8 @@ Renderer::Renderer(const color::Colorimeter& colorimeter, const RenderOptions& o
     : colorimeter_(colorimeter), options_(options), environment_(options.lighting) {
   CheckOptions(options_);
   if (options_.lighting == Lighting::kStudio && options_.roughness > 0.0) {
-    prefiltered_ = std::make_unique<PrefilteredEnvironment>(
-        environment_, options_.roughness, ThreadCount(options_.threads));
+    prefiltered_ = std::make_unique<PrefilteredEnvironment>(environment_, options_.roughness,
+                                                            ThreadCount(options_.threads));
   }
   plan_ = TraceTile(options_, environment_, prefiltered_.get());
 }
@@ -557,41 +555,39 @@ LinearImage Renderer::Shade(const ColourAt& rgb) const {
   const float backdrop_alpha = options_.background == Background::kTransparent ? 0.0f : 1.0f;
   LinearImage image(size, size);
   constexpr int kRows = internal::TilePlan::kRows;
-  ParallelFor(
-      size, kRows, ThreadCount(options_.threads), [&](int row_begin, int row_end) {
-        const internal::TileBlock& block = plan.blocks[row_begin / kRows];
-        const internal::OutlinePixel* outline = block.outline.data();
-        const std::size_t begin = static_cast<std::size_t>(row_begin) * size;
-        const std::size_t end = static_cast<std::size_t>(row_end) * size;
-        float* pixel = &image.rgba[4 * begin];
-        for (std::size_t p = begin; p < end; ++p, pixel += 4) {
-          const internal::PixelTerm term = plan.pixels[p];
-          double c[3];
-          if (term.mu >= 0.0f) {
-            rgb(term.mu, c);
-            pixel[0] = static_cast<float>(term.weight * c[0]);
-            pixel[1] = static_cast<float>(term.weight * c[1]);
-            pixel[2] = static_cast<float>(term.weight * c[2]);
-            pixel[3] = 1.0f;
-          } else if (term.mu == internal::kBackdropMu) {
-            pixel[0] = static_cast<float>(term.weight * white.r);
-            pixel[1] = static_cast<float>(term.weight * white.g);
-            pixel[2] = static_cast<float>(term.weight * white.b);
-            pixel[3] = backdrop_alpha;
-          } else {
-            const internal::OutlinePixel& o = *outline++;
-            double sum[3] = {o.background * white.r, o.background * white.g,
-                             o.background * white.b};
-            for (int s = o.first; s < o.first + o.count; ++s) {
-              const internal::PixelTerm& sample = block.samples[s];
-              rgb(sample.mu, c);
-              for (int k = 0; k < 3; ++k) sum[k] += sample.weight * c[k];
-            }
-            for (int k = 0; k < 3; ++k) pixel[k] = static_cast<float>(sum[k]);
-            pixel[3] = o.alpha;
-          }
+  ParallelFor(size, kRows, ThreadCount(options_.threads), [&](int row_begin, int row_end) {
+    const internal::TileBlock& block = plan.blocks[row_begin / kRows];
+    const internal::OutlinePixel* outline = block.outline.data();
+    const std::size_t begin = static_cast<std::size_t>(row_begin) * size;
+    const std::size_t end = static_cast<std::size_t>(row_end) * size;
+    float* pixel = &image.rgba[4 * begin];
+    for (std::size_t p = begin; p < end; ++p, pixel += 4) {
+      const internal::PixelTerm term = plan.pixels[p];
+      double c[3];
+      if (term.mu >= 0.0f) {
+        rgb(term.mu, c);
+        pixel[0] = static_cast<float>(term.weight * c[0]);
+        pixel[1] = static_cast<float>(term.weight * c[1]);
+        pixel[2] = static_cast<float>(term.weight * c[2]);
+        pixel[3] = 1.0f;
+      } else if (term.mu == internal::kBackdropMu) {
+        pixel[0] = static_cast<float>(term.weight * white.r);
+        pixel[1] = static_cast<float>(term.weight * white.g);
+        pixel[2] = static_cast<float>(term.weight * white.b);
+        pixel[3] = backdrop_alpha;
+      } else {
+        const internal::OutlinePixel& o = *outline++;
+        double sum[3] = {o.background * white.r, o.background * white.g, o.background * white.b};
+        for (int s = o.first; s < o.first + o.count; ++s) {
+          const internal::PixelTerm& sample = block.samples[s];
+          rgb(sample.mu, c);
+          for (int k = 0; k < 3; ++k) sum[k] += sample.weight * c[k];
         }
-      });
+        for (int k = 0; k < 3; ++k) pixel[k] = static_cast<float>(sum[k]);
+        pixel[3] = o.alpha;
+      }
+    }
+  });
   return image;
 }
 

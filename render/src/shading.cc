@@ -7,9 +7,9 @@
 #include <sstream>
 
 #include "alloycolor/core/error.h"
+#include "alloycolor/core/parallel.h"
 #include "alloycolor/core/units.h"
 #include "alloycolor/model/optics.h"
-#include "alloycolor/core/parallel.h"
 
 namespace alloycolor::render {
 namespace {

@@ -6,7 +6,6 @@
 
 namespace alloycolor::validate {
 
-
 CompositionChart ComputeChart(const AlloyModel& model, const color::Colorimeter& colorimeter,
                               double x_from, double x_to, int steps, double angle_deg,
                               bool weight_labels) {

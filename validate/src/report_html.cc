@@ -116,7 +116,8 @@ std::string SvgPlot(const PlotSpec& spec) {
         if (points.find(' ') != std::string::npos) {
           svg << "<polyline fill=\"none\" stroke=\"" << s.colour << "\" stroke-width=\"" << s.width
               << "\"" << (s.dash.empty() ? "" : " stroke-dasharray=\"" + s.dash + "\"")
-              << " points=\"" << points << "\"><title>" << EscapeXml(s.label) << "</title></polyline>";
+              << " points=\"" << points << "\"><title>" << EscapeXml(s.label)
+              << "</title></polyline>";
         }
         points.clear();
       };
@@ -309,9 +310,9 @@ void WriteRecovery(const ValidationReport& report, std::ostringstream& html) {
     if (s.count == 0) continue;
     summary << "<tr><td class=\"l\">" << EscapeXml(m) << "</td><td>" << s.count << "</td><td>"
             << Num(s.mean_abs_at_percent, "%.3f") << "</td><td>"
-            << (s.with_sigma > 0 ? std::to_string(s.within_2) + " of " +
-                                       std::to_string(s.with_sigma)
-                                 : std::string("&ndash;"))
+            << (s.with_sigma > 0
+                    ? std::to_string(s.within_2) + " of " + std::to_string(s.with_sigma)
+                    : std::string("&ndash;"))
             << "</td></tr>";
   }
   html << "<h2>Composition recovered from colour</h2>";
@@ -430,7 +431,7 @@ void WriteInSample(const ValidationReport& report, const SplitResult& split, int
       const auto it = h.results.find(method);
       if (it == h.results.end() || !it->second.error.empty()) continue;
       const double v = colour && !it->second.delta_e00.empty() ? it->second.delta_e00[0]
-                                                                : it->second.reflectance_rms;
+                                                               : it->second.reflectance_rms;
       if (!std::isfinite(v)) continue;
       held_sum += v;
       ++held;
@@ -628,19 +629,19 @@ std::string ValidationHtml(const ValidationReport& report) {
       // Replicates share x: their files tell them apart.
       html << "<p class=\"meta\">Held out: ";
       for (size_t i = 0; i < split.holdout_files.size(); ++i) {
-        html << (i ? ", " : "") << EscapeXml(split.holdout_files[i]) << " (x = "
-             << Num(split.holdout_x[i], "%.4g") << ")";
+        html << (i ? ", " : "") << EscapeXml(split.holdout_files[i])
+             << " (x = " << Num(split.holdout_x[i], "%.4g") << ")";
       }
       html << ". Trained on: ";
       for (size_t i = 0; i < split.train_files.size(); ++i) {
-        html << (i ? ", " : "") << EscapeXml(split.train_files[i]) << " (x = "
-             << Num(split.train_x[i], "%.4g") << ")";
+        html << (i ? ", " : "") << EscapeXml(split.train_files[i])
+             << " (x = " << Num(split.train_x[i], "%.4g") << ")";
       }
       html << ".</p>";
     }
     for (const auto& [method, error] : split.errors) {
-      html << "<p class=\"note\">" << EscapeXml(method) << " could not be built: " << EscapeXml(error)
-           << "</p>";
+      html << "<p class=\"note\">" << EscapeXml(method)
+           << " could not be built: " << EscapeXml(error) << "</p>";
     }
     for (const auto& [method, choice] : split.choices) {
       html << "<p class=\"note\"><b>" << EscapeXml(method) << "</b> chose " << EscapeXml(choice)

@@ -28,9 +28,6 @@ double DeltaE00Value(const MethodResult& r, int angle) {
 
 }  // namespace
 
-
-
-
 bool AnyColour(const ValidationReport& report) {
   for (const HoldoutResult& h : report.holdouts) {
     for (const auto& [method, r] : h.results) {
@@ -84,7 +81,6 @@ std::set<std::string> Best(const ValidationReport& report, const HoldoutResult& 
   return winners;
 }
 
-
 MetricSummary Summarise(const ValidationReport& report, const std::string& method,
                         const Metric& metric) {
   MetricSummary s;
@@ -137,6 +133,5 @@ std::string ColourRangeText(const ValidationReport& report) {
          "-degree observer); the prediction evaluated on 380-780 nm as `alloycolor predict` "
          "writes it, the measured file on its own range, each held at its ends";
 }
-
 
 }  // namespace alloycolor::validate

@@ -410,43 +410,46 @@ ValidationReport ComputeValidation(const Dataset& dataset, const std::vector<Sam
     Report(progress, "validate: " + method + " on " + std::to_string(report.splits.size()) +
                          (report.splits.size() == 1 ? " split" : " splits"));
     std::vector<std::string> errors(report.splits.size());
-    ParallelTasks(report.splits.size(), [&](size_t s) {
-      SplitResult& split = report.splits[s];
-      std::unique_ptr<AlloyModel> model;
-      try {
-        model = options.build(method, WithoutSampleIndices(dataset, splits[s]));
-      } catch (const Error& e) {
-        errors[s] = e.what();
-      }
-      if (model) {
-        split.warnings[method] = model->warnings();
-        split.in_sample[method] = model->in_sample();
-        if (model->fit_summary().selection.present()) {
-          split.choices[method] = model->fit_summary().selection.reason;
-        }
-        FillDrudeCurves(*model, method, dataset.system, &split.drude);
-        for (size_t h : holdouts_of[s]) {
-          HoldoutResult& holdout = report.holdouts[h];
-          const Sample& sample = dataset.samples[holdout.sample];
+    ParallelTasks(
+        report.splits.size(),
+        [&](size_t s) {
+          SplitResult& split = report.splits[s];
+          std::unique_ptr<AlloyModel> model;
           try {
-            holdout.results[method] = Evaluate(*model, sample, colorimeter, options, &holdout);
+            model = options.build(method, WithoutSampleIndices(dataset, splits[s]));
           } catch (const Error& e) {
-            holdout.results[method].error = e.what();
+            errors[s] = e.what();
           }
-        }
-      }
-      if (progress) {
-        const std::lock_guard<std::mutex> lock(progress_mutex);
-        progress("validate [" + std::to_string(++done) + "/" + std::to_string(total) + "] " +
-                 method + ", trained on " + std::to_string(split.train_x.size()) +
-                 " samples, held out x = " + XList(split.holdout_x) +
-                 (std::any_of(holdouts_of[s].begin(), holdouts_of[s].end(),
-                              [&](size_t h) { return report.holdouts[h].replicate; })
-                      ? " (" + Join(split.holdout_files) + ")"
-                      : std::string()) +
-                 (errors[s].empty() ? "" : ": failed: " + errors[s]));
-      }
-    }, options.threads);
+          if (model) {
+            split.warnings[method] = model->warnings();
+            split.in_sample[method] = model->in_sample();
+            if (model->fit_summary().selection.present()) {
+              split.choices[method] = model->fit_summary().selection.reason;
+            }
+            FillDrudeCurves(*model, method, dataset.system, &split.drude);
+            for (size_t h : holdouts_of[s]) {
+              HoldoutResult& holdout = report.holdouts[h];
+              const Sample& sample = dataset.samples[holdout.sample];
+              try {
+                holdout.results[method] = Evaluate(*model, sample, colorimeter, options, &holdout);
+              } catch (const Error& e) {
+                holdout.results[method].error = e.what();
+              }
+            }
+          }
+          if (progress) {
+            const std::lock_guard<std::mutex> lock(progress_mutex);
+            progress("validate [" + std::to_string(++done) + "/" + std::to_string(total) + "] " +
+                     method + ", trained on " + std::to_string(split.train_x.size()) +
+                     " samples, held out x = " + XList(split.holdout_x) +
+                     (std::any_of(holdouts_of[s].begin(), holdouts_of[s].end(),
+                                  [&](size_t h) { return report.holdouts[h].replicate; })
+                          ? " (" + Join(split.holdout_files) + ")"
+                          : std::string()) +
+                     (errors[s].empty() ? "" : ": failed: " + errors[s]));
+          }
+        },
+        options.threads);
     // A method that fails everywhere beside others that work is reported as failed in
     // each split (the physical fit refusing unphysical data, say); when no method builds
     // on any split, the first method's first error is the answer.

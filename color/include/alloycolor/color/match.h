@@ -7,8 +7,8 @@
 // is scanned at `scan_points` evenly spaced compositions over the model's range (colour
 // read from a ColorSweep table, sweep.h), every local minimum of the scan (ends included)
 // is refined by Brent's method (on d^2, smooth where d has a corner) on the exact model
-// (ColorSweep::ExactXYZ) inside its two neighbouring scan intervals, and the minima within `margin` of the best are
-// returned, best first.
+// (ColorSweep::ExactXYZ) inside its two neighbouring scan intervals, and the minima within `margin`
+// of the best are returned, best first.
 //
 // Error bar. The colour speed v(x) = |dLab/dx| in CIEDE2000 units per unit of x is
 //   v(x) = DeltaE00(Lab(x - h), Lab(x + h)) / 2h,  h = 1e-5
@@ -56,13 +56,13 @@ struct MatchOptions {
 struct Match {
   static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   double x_atomic = kNaN;
-  double de00 = kNaN;             // CIEDE2000 left (NaN: a spectrum without colour)
-  double reflectance_rms = kNaN;  // spectrum matches only
-  double x_sigma = kNaN;          // one sigma of x_atomic (NaN: no uncertainty known)
-  double model_sigma_de00 = kNaN; // the model's colour one-sigma at x_atomic (NaN: none)
-  double de00_per_x = kNaN;       // colour speed v(x) at x_atomic
-  Lab lab{};                      // the model's colour at x_atomic
-  bool at_range_end = false;      // the minimum lies at x_min or x_max
+  double de00 = kNaN;              // CIEDE2000 left (NaN: a spectrum without colour)
+  double reflectance_rms = kNaN;   // spectrum matches only
+  double x_sigma = kNaN;           // one sigma of x_atomic (NaN: no uncertainty known)
+  double model_sigma_de00 = kNaN;  // the model's colour one-sigma at x_atomic (NaN: none)
+  double de00_per_x = kNaN;        // colour speed v(x) at x_atomic
+  Lab lab{};                       // the model's colour at x_atomic
+  bool at_range_end = false;       // the minimum lies at x_min or x_max
 };
 
 // The colour of the model at any composition and its distance to targets, prepared once

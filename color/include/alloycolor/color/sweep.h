@@ -70,7 +70,7 @@ class ColorSweep {
   std::unique_ptr<BoundModel> bound_;
   double cos_psi_ = 1.0;
   bool normal_ = true;
-  std::vector<double> grid_nm_;               // colorimeter grid held inside the model's range
+  std::vector<double> grid_nm_;  // colorimeter grid held inside the model's range
   // Scratch on grid_nm_ for ExactXYZ, sized once: eps1, eps2.
   mutable std::vector<double> eps1_, eps2_;
   std::vector<Segment> segments_;

@@ -42,7 +42,7 @@ struct Dataset {
   std::string manifest_path;
   std::string name;
   AlloySystem system;
-  std::string composition;      // "atomic_fraction_a" or "weight_fraction_a"
+  std::string composition;  // "atomic_fraction_a" or "weight_fraction_a"
   // Sorted by x_atomic (stable: the replicates of a composition adjacent, in the
   // manifest's order).
   std::vector<Sample> samples;

@@ -37,7 +37,7 @@ std::shared_ptr<FitMemo> MakeFitMemo();
 
 struct FitSettings {
   ThreadBudget* threads = nullptr;  // the threads its folds may share; none: one at a time
-  int degree = -1;      // physical: composition degree; < 0: the method's default
+  int degree = -1;                  // physical: composition degree; < 0: the method's default
   double smoothing = -1;  // smooth: roughness penalty across composition; -1: cross-validated
   // smooth: the space of its curves, "eps" or "log_eps"; empty: chosen by its leave-one-out
   // (a fold of the prediction error or of auto that has no interior composition to choose
@@ -58,8 +58,8 @@ struct FitSettings {
   // from it what its fold cannot choose, such as the smooth model's space).
   const AlloyModel* parent = nullptr;
   const AlloyModel* start = nullptr;  // refit: start from this model (same method)
-  int max_iterations = 0;  // physical: the solver's iterations, 0 for the fit's default
-  std::shared_ptr<FitMemo> memo;  // null: BuildModel makes one for this fit alone
+  int max_iterations = 0;             // physical: the solver's iterations, 0 for the fit's default
+  std::shared_ptr<FitMemo> memo;      // null: BuildModel makes one for this fit alone
   ProgressCallback progress;          // may be empty
   // auto (required there): the colorimeter its leave-one-out scores colour with, at normal
   // incidence; data without colour (infrared) are scored by reflectance.

@@ -69,9 +69,8 @@ struct SmoothRoughnessResidual {
     return true;
   }
   static ceres::CostFunction* Create(const std::vector<double>& knots_u, double weight) {
-    auto* cost =
-        new ceres::DynamicAutoDiffCostFunction<SmoothRoughnessResidual, kSmoothStride>(
-            new SmoothRoughnessResidual(knots_u, weight));
+    auto* cost = new ceres::DynamicAutoDiffCostFunction<SmoothRoughnessResidual, kSmoothStride>(
+        new SmoothRoughnessResidual(knots_u, weight));
     cost->AddParameterBlock(static_cast<int>(knots_u.size()));
     cost->AddParameterBlock(static_cast<int>(knots_u.size()));
     cost->SetNumResiduals(2 * (static_cast<int>(knots_u.size()) - 2));

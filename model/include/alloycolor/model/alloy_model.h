@@ -18,10 +18,9 @@
 #include <complex>
 #include <cstdint>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "alloycolor/core/composition.h"
 #include "alloycolor/core/dataset.h"
@@ -39,8 +38,8 @@ inline constexpr const char* kModelFormatName = "alloycolor-model";
 // composition-out score on the training data (the metric says which), lowest wins.
 struct MethodScore {
   std::string method;
-  double mean = 0;    // mean of the metric over the folds
-  double max = 0;     // worst fold
+  double mean = 0;  // mean of the metric over the folds
+  double max = 0;   // worst fold
   int folds = 0;
   // The model's own (in-sample) error at the end compositions, which no fold can hold
   // out, in the folds' metric: the larger of the two. Not in mean and max.

@@ -43,8 +43,8 @@
 #include <vector>
 
 #include "alloycolor/model/alloy_model.h"
-#include "alloycolor/model/optics.h"
 #include "alloycolor/model/legendre.h"
+#include "alloycolor/model/optics.h"
 
 namespace alloycolor {
 

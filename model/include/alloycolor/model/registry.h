@@ -14,10 +14,9 @@
 #define ALLOYCOLOR_MODEL_REGISTRY_H_
 
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "alloycolor/core/dataset.h"
 #include "alloycolor/model/alloy_model.h"
@@ -53,9 +52,9 @@ struct MethodTraits {
 };
 
 using MethodReader = std::unique_ptr<AlloyModel> (*)(const nlohmann::json& doc,
-                                                    const std::string& source);
+                                                     const std::string& source);
 using MethodBuilder = std::unique_ptr<AlloyModel> (*)(const Dataset& dataset,
-                                                     const fit::FitSettings& settings);
+                                                      const fit::FitSettings& settings);
 
 struct MethodInfo {
   std::string name;     // "smooth"

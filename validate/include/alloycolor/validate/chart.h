@@ -36,7 +36,6 @@ CompositionChart ComputeChart(const AlloyModel& model, const color::Colorimeter&
                               double x_from, double x_to, int steps, double angle_deg,
                               bool weight_labels);
 
-
 }  // namespace alloycolor::validate
 
 #endif  // ALLOYCOLOR_VALIDATE_CHART_H_

@@ -152,12 +152,10 @@ SampleSplit SplitAtCompositions(const Dataset& dataset, const std::vector<double
 // Runs every method on every split. A method that fails on a split is recorded
 // there; a method that fails on every split (an unknown name) throws its first error
 // before the other methods' long work. Progress goes to `progress` (may be empty).
-ValidationReport ComputeValidation(const Dataset& dataset,
-                                   const std::vector<SampleSplit>& splits,
+ValidationReport ComputeValidation(const Dataset& dataset, const std::vector<SampleSplit>& splits,
                                    const color::Colorimeter& colorimeter,
                                    const ValidationOptions& options,
                                    const ProgressCallback& progress);
-
 
 // How the observed delta_e00 compares with the model's own one-sigma, for one method at one
 // angle, pooled over every held-out sample: the fractions within 1 and 2 sigma (about 68 %

@@ -148,14 +148,24 @@ std::vector<std::string> SplitComma(const std::string& text) {
 
 }  // namespace
 
+namespace {
+
+// A composition list past kMaxListValues is refused by its length alone, so the check can
+// come before the model is loaded or fitted.
+void CheckCompositionCount(std::size_t count, const std::string& option) {
+  if (count > kMaxListValues) {
+    throw Error(option + ": " + std::to_string(count) + " compositions given, at most " +
+                std::to_string(kMaxListValues) + " (use 'alloycolor sweep' for more)");
+  }
+}
+
+}  // namespace
+
 std::vector<double> ParseCompositions(const std::string& text, const AlloySystem& system,
                                       const std::string& option) {
   std::vector<double> xs;
   const std::vector<std::string> parts = SplitComma(text);
-  if (parts.size() > kMaxListValues) {
-    throw Error(option + ": " + std::to_string(parts.size()) + " compositions given, at most " +
-                std::to_string(kMaxListValues) + " (use 'alloycolor sweep' for more)");
-  }
+  CheckCompositionCount(parts.size(), option);
   for (const std::string& part : parts) {
     if (part.find('\0') != std::string::npos) throw Error(option + ": a NUL byte in the list");
     try {
@@ -342,6 +352,7 @@ std::unique_ptr<AlloyModel> MaterialSource::LoadModel(bool quiet) const {
     throw Error("give --nk FILE, or --model FILE (or --data DIR) with --x");
   }
   if (x_text.empty()) throw Error("--x: give the composition(s), e.g. --x 0.75 or 18k");
+  CheckCompositionCount(SplitComma(x_text).size(), "--x");
   return source.Load(quiet);
 }
 

@@ -81,7 +81,8 @@ void Run(const ChartOptions& o) {
 void RegisterChart(CLI::App& app) {
   auto o = std::make_shared<ChartOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "chart",
+      "chart", "A strip of colour swatches from one composition to another (SVG or PNG)");
+  cmd->footer(
       "Composition chart: a strip of sRGB swatches of the polished alloy from one "
       "composition to another, like the handbook chart of Au-Ag colours. SVG carries the "
       "composition under each swatch and the elements at the ends; PNG is the swatches only "

@@ -160,7 +160,8 @@ void Run(const ColorOptions& o) {
 void RegisterColor(CLI::App& app) {
   auto o = std::make_shared<ColorOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "color",
+      "color", "Colour of a polished metal: measured n, k (--nk) or an alloy at --x compositions");
+  cmd->footer(
       "Colour of a polished metal: from measured n, k (--nk FILE), or of an alloy at "
       "composition(s) --x from a data set (--data, the method fit would choose by default) or a "
       "fitted "

@@ -218,7 +218,8 @@ void Run(const ExploreOptions& o) {
 void RegisterExplore(CLI::App& app) {
   auto o = std::make_shared<ExploreOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "explore",
+      "explore", "Write the explorer page: one offline HTML file with a composition slider");
+  cmd->footer(
       "Writes the explorer page: one self-contained HTML file (works offline, no external "
       "files) with a composition slider over the model's range (measured compositions "
       "marked; at%, wt% and karat for gold), a polished sphere and ring shaded per pixel, "

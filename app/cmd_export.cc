@@ -90,7 +90,8 @@ void Run(const ExportOptions& o) {
 void RegisterExport(CLI::App& app) {
   auto o = std::make_shared<ExportOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "export",
+      "export", "Materials for renderers (pbrt, Mitsuba, Blender, OpenPBR, MaterialX, glTF)");
+  cmd->footer(
       "Materials for renderers from measured n, k (--nk FILE) or an alloy at one composition "
       "--x (--model or --data). --format spd: PREFIX.eta.spd and PREFIX.k.spd (wavelength_nm "
       "value per line, 360-830 nm, end values held where the data stop short, as comment lines "

@@ -1,5 +1,5 @@
 // alloycolor fit: fit a model to a data set and write it as a JSON model file; with
-// --from, refit starting from an earlier model and report what changed.
+// --refit, refit starting from an earlier model and report what changed.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -26,13 +26,15 @@ struct FitOptions {
   std::string method = "auto";
   std::string terms = "auto";
   std::string out;
-  std::string from;
+  std::string refit;     // --refit MODEL
+  std::string from_old;  // --from MODEL, --refit's old spelling (accepted with a note)
   int degree = -1;
   double smoothing = -1;
   std::string space;
   double lambda_from = 0, lambda_to = 0, lambda_step = 0;
   bool no_covariance = false;
   bool quiet = false;
+  bool verbose = false;
   int threads = 0;
 };
 
@@ -89,14 +91,67 @@ void ReportChanges(const AlloyModel& old_model, const AlloyModel& model) {
   }
 }
 
+// What the fit chose and how well it fits, on stderr: auto's choice and the fit's summary
+// line; with `verbose`, auto's leave-one-out table and the model against its own samples.
+void ReportFit(const AlloyModel& model, double seconds, bool verbose) {
+  const FitSummary& stats = model.fit_summary();
+  if (stats.selection.present()) {
+    if (verbose) {
+      std::fprintf(stderr, "alloycolor: auto: leave-one-out %s on the training samples:\n",
+                   stats.selection.metric.c_str());
+      for (const MethodScore& m : stats.selection.scores) {
+        if (m.error.empty()) {
+          std::fprintf(stderr,
+                       "alloycolor:   %-11s mean %.4g, worst %.4g (%d folds; ends %.3g)%s\n",
+                       m.method.c_str(), m.mean, m.max, m.folds, m.end_miss,
+                       m.method == model.method() ? "  <- chosen" : "");
+        } else {
+          std::fprintf(stderr, "alloycolor:   %-11s not scored: %s\n", m.method.c_str(),
+                       m.error.c_str());
+        }
+      }
+    }
+    std::fprintf(stderr, "alloycolor: auto chose %s\n", stats.selection.reason.c_str());
+  }
+  if (stats.present()) {
+    const std::string shape = stats.details.contains("space")
+                                  ? stats.details.value("space", std::string("eps")) +
+                                        ", smoothing " +
+                                        FormatNumber(stats.details.value("smoothing", 0.0))
+                                  : "degree " + std::to_string(stats.degree);
+    std::fprintf(stderr,
+                 "alloycolor: %s fit: %s, final cost %.6g, %d iterations, %s, "
+                 "RMS relative eps error %.3g, %.3f s\n",
+                 model.method().c_str(), shape.c_str(), stats.final_cost, stats.iterations,
+                 stats.converged ? "converged" : "NOT converged", stats.rms_relative_eps, seconds);
+  }
+  if (!verbose || model.in_sample().empty()) return;
+  std::fprintf(stderr, "alloycolor: %s against its own samples (normal incidence, D65, 2 deg):\n",
+               model.method().c_str());
+  for (const InSampleError& r : model.in_sample()) {
+    if (std::isfinite(r.delta_e00)) {
+      std::fprintf(stderr, "alloycolor:   x = %-8.4g dE00 %-9.3g reflectance RMS %-9.3g %s\n",
+                   r.x_atomic, r.delta_e00, r.reflectance_rms, r.file.c_str());
+    } else {
+      std::fprintf(stderr, "alloycolor:   x = %-8.4g reflectance RMS %-9.3g %s\n", r.x_atomic,
+                   r.reflectance_rms, r.file.c_str());
+    }
+  }
+}
+
 void Run(const FitOptions& o) {
   ThreadBudget threads(o.threads);
   if (o.out.empty()) throw Error("--out: give the model file to write");
   namespace fs = std::filesystem;
   std::error_code ec;
-  if (!o.from.empty() && fs::equivalent(o.from, o.out, ec)) {
+  if (!o.from_old.empty()) {
+    if (!o.refit.empty()) throw Error("--from is --refit's old name: give one of them");
+    if (!o.quiet) Warn("--from is now --refit (the old name is accepted until version 0.3)");
+  }
+  const std::string& refit = o.refit.empty() ? o.from_old : o.refit;
+  if (!refit.empty() && fs::equivalent(refit, o.out, ec)) {
     throw Error("--out " + o.out +
-                " is the --from model; write the refit elsewhere so the "
+                " is the --refit model; write the refit elsewhere so the "
                 "old model is kept");
   }
   Dataset dataset = LoadDatasetArg(o.data_dir);
@@ -111,11 +166,11 @@ void Run(const FitOptions& o) {
     dataset = WithoutSamples(dataset, exclude);
   }
   std::unique_ptr<AlloyModel> old_model;
-  if (!o.from.empty()) {
-    old_model = ReadModelFile(o.from);
-    NoteInput(o.from);
+  if (!refit.empty()) {
+    old_model = ReadModelFile(refit);
+    NoteInput(refit);
   }
-  // Before the fit: the model must not replace an input (the manifest, a sample, --from).
+  // Before the fit: the model must not replace an input (the manifest, a sample, --refit).
   CheckOutputPath(o.out);
   if (o.lambda_step > 0) {
     const WavelengthRange common = CommonRange(dataset);
@@ -140,6 +195,7 @@ void Run(const FitOptions& o) {
   settings.lambda_step_nm = o.lambda_step;
   settings.start = old_model.get();
   settings.progress = ProgressPrinter(o.quiet);
+  settings.details = ProgressPrinter(!o.verbose);
   const color::Colorimeter colorimeter = LoadColorimeter("D65", 2);
   settings.colorimeter = &colorimeter;
   const std::unique_ptr<AlloyModel> model = fit::BuildModel(o.method, dataset, settings);
@@ -154,52 +210,10 @@ void Run(const FitOptions& o) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!o.quiet) {
     for (const auto& w : model->warnings()) Warn(w);
-    const FitSummary& stats = model->fit_summary();
-    if (stats.selection.present()) {
-      std::fprintf(stderr, "alloycolor: auto: leave-one-out %s on the training samples:\n",
-                   stats.selection.metric.c_str());
-      for (const MethodScore& m : stats.selection.scores) {
-        if (m.error.empty()) {
-          std::fprintf(stderr,
-                       "alloycolor:   %-11s mean %.4g, worst %.4g (%d folds; ends %.3g)%s\n",
-                       m.method.c_str(), m.mean, m.max, m.folds, m.end_miss,
-                       m.method == model->method() ? "  <- chosen" : "");
-        } else {
-          std::fprintf(stderr, "alloycolor:   %-11s not scored: %s\n", m.method.c_str(),
-                       m.error.c_str());
-        }
-      }
-      std::fprintf(stderr, "alloycolor: auto chose %s\n", stats.selection.reason.c_str());
-    }
-    if (stats.present()) {
-      const std::string shape = stats.details.contains("space")
-                                    ? stats.details.value("space", std::string("eps")) +
-                                          ", smoothing " +
-                                          FormatNumber(stats.details.value("smoothing", 0.0))
-                                    : "degree " + std::to_string(stats.degree);
-      std::fprintf(stderr,
-                   "alloycolor: %s fit: %s, final cost %.6g, %d iterations, %s, "
-                   "RMS relative eps error %.3g, %.3f s\n",
-                   model->method().c_str(), shape.c_str(), stats.final_cost, stats.iterations,
-                   stats.converged ? "converged" : "NOT converged", stats.rms_relative_eps,
-                   seconds);
-    }
-    if (!model->in_sample().empty()) {
-      std::fprintf(stderr,
-                   "alloycolor: %s against its own samples (normal incidence, D65, 2 deg):\n",
-                   model->method().c_str());
-      for (const InSampleError& r : model->in_sample()) {
-        if (std::isfinite(r.delta_e00)) {
-          std::fprintf(stderr, "alloycolor:   x = %-8.4g dE00 %-9.3g reflectance RMS %-9.3g %s\n",
-                       r.x_atomic, r.delta_e00, r.reflectance_rms, r.file.c_str());
-        } else {
-          std::fprintf(stderr, "alloycolor:   x = %-8.4g reflectance RMS %-9.3g %s\n", r.x_atomic,
-                       r.reflectance_rms, r.file.c_str());
-        }
-      }
-    }
-    if (old_model) ReportChanges(*old_model, *model);
+    ReportFit(*model, seconds, o.verbose);
   }
+  // What --refit asked for: said even with --quiet.
+  if (old_model) ReportChanges(*old_model, *model);
   WriteOutput(o.out, text, o.quiet);
 }
 
@@ -207,8 +221,9 @@ void Run(const FitOptions& o) {
 
 void RegisterFit(CLI::App& app) {
   auto o = std::make_shared<FitOptions>();
-  CLI::App* cmd = app.add_subcommand(
-      "fit",
+  CLI::App* cmd =
+      app.add_subcommand("fit", "Fit a model to a data set and write it as a JSON model file");
+  cmd->footer(
       "Fit a model to all samples of a data set and write it as a versioned JSON model "
       "file (docs/model-format.md). smooth: Ceres fit, at every wavelength, of eps1 and eps2 "
       "(or ln|eps| and arg eps, where leave-one-out prefers them) "
@@ -233,8 +248,10 @@ void RegisterFit(CLI::App& app) {
                       MethodsHelp())
       ->capture_default_str();
   cmd->add_option("--out", o->out, "Model file to write (written atomically)")->required();
-  cmd->add_option("--from", o->from,
-                  "Refit: start from this earlier model and report what changed");
+  cmd->add_option("--refit", o->refit,
+                  "Start from this earlier model and report what changed (even with --quiet)");
+  cmd->add_option("--from", o->from_old, "--refit's old name (accepted until version 0.3)")
+      ->group("");
   cmd->add_option("--degree", o->degree,
                   "physical: degree of every parameter's polynomial in composition (default: 2, "
                   "as Nordheim's rule bows the damping, or 1 where leave-one-composition-out "
@@ -275,7 +292,11 @@ void RegisterFit(CLI::App& app) {
                   "Threads for the leave-one-out folds of the fit (0: all the hardware's)")
       ->capture_default_str()
       ->check(CLI::Range(0, 1024));
-  cmd->add_flag("--quiet", o->quiet, "No progress or warnings on stderr");
+  CLI::Option* quiet = cmd->add_flag("--quiet", o->quiet, "No progress or warnings on stderr");
+  cmd->add_flag("--verbose", o->verbose,
+                "Also auto's leave-one-out table, the cross-validation of the smoothing and the "
+                "model against its own samples")
+      ->excludes(quiet);
   cmd->callback([o]() { Run(*o); });
 }
 

@@ -187,7 +187,8 @@ void Run(const MatchCommandOptions& o) {
 void RegisterMatch(CLI::App& app) {
   auto o = std::make_shared<MatchCommandOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "match",
+      "match", "The composition whose colour (or reflectance) is closest to a target");
+  cmd->footer(
       "The composition whose colour is closest to a target (--lab, --xyz, --hex, or the colour "
       "of measured n, k with --nk) or whose reflectance is closest to a measured spectrum "
       "(--reflectance FILE), within the model's range: the colour difference left, the "

@@ -141,6 +141,8 @@ void RegisterParams(CLI::App& app) {
   o->source.method = "physical";
   CLI::App* cmd = app.add_subcommand(
       "params",
+      "A model's physical parameters (plasma energy, damping, tau, m*) against composition");
+  cmd->footer(
       "A model's physical parameters against composition, with one-sigma "
       "uncertainties from the fit's covariance. Physical model: plasma energy wp, damping "
       "gamma, scattering time tau = hbar/gamma, free-carrier density N_e, effective mass "

@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <iostream>
 #include <sstream>
+#include <string>
+#include <tuple>
 
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/io.h"
@@ -19,6 +21,7 @@ struct PredictOptions {
   ModelSource source;
   std::string x_text;
   double from_nm = 380, to_nm = 780, step_nm = 5;
+  double old_from = 0, old_to = 0, old_step = 0;  // --from, --to, --step: the old names
   std::string format = "csv";
   bool sigma = false;
   bool quiet = false;
@@ -35,7 +38,21 @@ void Run(const PredictOptions& o, CLI::App* cmd) {
   const double x = xs[0];
   CheckComposition(*model, x, o.source.extrapolate);
   double from = o.from_nm, to = o.to_nm, step = o.step_nm;
-  const bool grid_given = cmd->count("--from") || cmd->count("--to") || cmd->count("--step");
+  bool grid_given = false;
+  for (const auto& [name, old, value, given] : {std::tuple{"from", "--from", o.old_from, &from},
+                                                {"to", "--to", o.old_to, &to},
+                                                {"step", "--step", o.old_step, &step}}) {
+    const std::string now = std::string("--lambda-") + name;
+    if (cmd->count(old) && cmd->count(now)) {
+      throw Error(std::string(old) + " is " + now + "'s old name: give one of them");
+    }
+    if (cmd->count(old)) {
+      *given = value;
+      if (!o.quiet)
+        Warn(std::string(old) + " is now " + now + " (the old name is accepted until version 0.3)");
+    }
+    grid_given = grid_given || cmd->count(old) || cmd->count(now);
+  }
   if (!grid_given && (model->lambda_min_nm() > from || model->lambda_max_nm() < to)) {
     // The default visible grid is outside the model (infrared data): use its own range.
     from = model->lambda_min_nm();
@@ -43,11 +60,11 @@ void Run(const PredictOptions& o, CLI::App* cmd) {
     step = (to - from) / 100.0;
   }
   if (!(step > 0) || !(to >= from)) {
-    throw Error("--from/--to/--step: need from <= to and a positive step");
+    throw Error("--lambda-from/--lambda-to/--lambda-step: need from <= to and a positive step");
   }
   if ((to - from) / step > 1e6) {
-    throw Error("--from/--to/--step: " + FormatNumber((to - from) / step) +
-                " wavelengths; at most 1,000,000 (give a larger --step)");
+    throw Error("--lambda-from/--lambda-to/--lambda-step: " + FormatNumber((to - from) / step) +
+                " wavelengths; at most 1,000,000 (give a larger --lambda-step)");
   }
   const std::vector<double> grid = UniformGrid(from, to, step);
   const std::vector<std::complex<double>> index = model->Index(x, grid);
@@ -120,17 +137,22 @@ void Run(const PredictOptions& o, CLI::App* cmd) {
 void RegisterPredict(CLI::App& app) {
   auto o = std::make_shared<PredictOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "predict",
+      "predict", "Optical constants n, k of the alloy at one composition, as CSV or JSON");
+  cmd->footer(
       "Optical constants n, k of the alloy at one composition, on a wavelength grid, as CSV "
       "(lambda_nm,n,k) or JSON (with one-sigma n_sigma, k_sigma for models that carry "
       "uncertainty).");
   o->source.AddOptions(cmd, true);
   cmd->add_option("--x", o->x_text, "Composition: 0.75, 75at%, 75wt% or 18k");
-  cmd->add_option("--from", o->from_nm,
+  cmd->add_option("--lambda-from", o->from_nm,
                   "First wavelength, nm (default 380, or the model's range for infrared "
                   "models)");
-  cmd->add_option("--to", o->to_nm, "Last wavelength, nm (default 780)");
-  cmd->add_option("--step", o->step_nm, "Wavelength step, nm")->capture_default_str();
+  cmd->add_option("--lambda-to", o->to_nm, "Last wavelength, nm (default 780)");
+  cmd->add_option("--lambda-step", o->step_nm, "Wavelength step, nm")->capture_default_str();
+  // The old names, until version 0.3 (--from is a composition in sweep, chart and params).
+  cmd->add_option("--from", o->old_from)->group("");
+  cmd->add_option("--to", o->old_to)->group("");
+  cmd->add_option("--step", o->old_step)->group("");
   cmd->add_option("--format", o->format, "csv or json")->capture_default_str();
   cmd->add_flag("--sigma", o->sigma, "CSV: add n_sigma,k_sigma columns");
   cmd->add_flag("--quiet", o->quiet, "No warnings or progress on stderr");

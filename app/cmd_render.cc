@@ -209,7 +209,8 @@ void Run(const RenderCommandOptions& o) {
 void RegisterRender(CLI::App& app) {
   auto o = std::make_shared<RenderCommandOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "render",
+      "render", "Picture (PNG) of a polished sphere or ring of a metal or alloy");
+  cmd->footer(
       "Picture (PNG, sRGB) of a polished sphere or ring made of a metal (--nk FILE) or of an "
       "alloy at composition(s) --x side by side (--model or --data). Every pixel's colour is "
       "the spectral Fresnel reflectance at its angle of incidence integrated against the "

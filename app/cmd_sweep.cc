@@ -279,7 +279,8 @@ void Run(const SweepOptions& o) {
 void RegisterSweep(CLI::App& app) {
   auto o = std::make_shared<SweepOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "sweep",
+      "sweep", "Colour at evenly spaced compositions, one row each, as CSV or JSON");
+  cmd->footer(
       "Colour of the alloy at --steps evenly spaced compositions from --from to --to (default: "
       "the model's range), one row each: x, XYZ (perfect reflector Y = 1), CIELAB (white = "
       "the illuminant's) and 8-bit sRGB, as CSV (x,X,Y,Z,L,a,b,srgb8_r,srgb8_g,srgb8_b) or "

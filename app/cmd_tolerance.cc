@@ -109,7 +109,8 @@ void Run(const ToleranceCommandOptions& o) {
 void RegisterTolerance(CLI::App& app) {
   auto o = std::make_shared<ToleranceCommandOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "tolerance",
+      "tolerance", "The composition window within which the colour stays within --de");
+  cmd->footer(
       "The composition window around --x within which the colour stays within --de (CIEDE2000) "
       "of its own at every angle and illuminant given, and how fast colour changes with "
       "composition there; clipped at the model's range, and says so.");

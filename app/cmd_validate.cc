@@ -251,7 +251,8 @@ void Run(const ValidateOptions& o) {
 void RegisterValidate(CLI::App& app) {
   auto o = std::make_shared<ValidateOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "validate",
+      "validate", "Report on held-out compositions: every method refitted without them and scored");
+  cmd->footer(
       "Validation report on held-out compositions: every method is refitted without the "
       "held-out samples (the same split for all), predicts them, and is scored by CIEDE2000 "
       "colour difference at each angle, reflectance RMS and maximum error (380-780 nm, or the "

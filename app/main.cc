@@ -94,14 +94,14 @@ int main(int argc, char** argv) {
   FLAGS_stderrthreshold = 3;
 #endif
   CLI::App app{"alloycolor " ALLOYCOLOR_VERSION
-               ": optical constants, reflectance and colour of binary metal alloys at any "
-               "composition, from measurements at a few compositions.\n"
-               "Compositions are atomic fractions of the system's first element (0.75), or "
+               ": optical constants, reflectance and colour of binary metal alloys\n"
+               "at any composition, from measurements at a few compositions.\n"
+               "Compositions: atomic fractions of the system's first element (0.75),\n"
                "75at%, 75wt%, or a karat for gold alloys (18k).\n"
                "Bundled data sets: Au-Ag, Cu-Zn, Nb-Sn (give --data NAME or a folder/manifest)."};
   app.require_subcommand(1);
   app.set_version_flag("--version", ALLOYCOLOR_VERSION);
-  app.footer("Run 'alloycolor COMMAND --help' for a command's options.");
+  app.footer("Run 'alloycolor COMMAND --help' for a command's options; docs/usage.md has more.");
   alloycolor::app::RegisterColor(app);
   alloycolor::app::RegisterFit(app);
   alloycolor::app::RegisterPredict(app);

@@ -6,6 +6,9 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include "test_util.h"
 
@@ -81,15 +84,46 @@ TEST(Cli, PaperBaselineAtAKnownSampleIsThatSample) {
   EXPECT_NEAR(karat["x"].get<double>(), 0.6216, 1e-3);
 }
 
+// The top level lists each command on one short line; a command's help has its options
+// and its details, and the method list there is a line, not the fit's paragraph.
 TEST(Cli, HelpExplainsEveryCommand) {
   const RunResult r = RunProgram({"--help"});
   EXPECT_EQ(r.status, 0);
-  for (const char* cmd : {"color", "fit", "predict"}) {
-    EXPECT_NE(r.out.find(cmd), std::string::npos) << cmd;
+  std::istringstream lines(r.out);
+  for (std::string line; std::getline(lines, line);) {
+    EXPECT_LE(line.size(), 120u) << line;
+  }
+  for (const char* cmd : {"color", "fit", "predict", "render", "export", "validate", "chart",
+                          "params", "sweep", "explore", "match", "tolerance"}) {
+    EXPECT_NE(r.out.find("\n  " + std::string(cmd) + " "), std::string::npos) << cmd;
     const RunResult sub = RunProgram({cmd, "--help"});
     EXPECT_EQ(sub.status, 0) << cmd;
     EXPECT_NE(sub.out.find("--"), std::string::npos) << cmd;
+    if (std::string(cmd) != "fit") {
+      const std::size_t method = sub.out.find("--method");
+      if (method == std::string::npos) continue;
+      const std::size_t end = sub.out.find("\n", method);
+      EXPECT_LT(end - method, 300u) << cmd << ": " << sub.out.substr(method, end - method);
+    }
   }
+}
+
+// stderr is quiet by default: a smooth fit's cross-validation table and the model against
+// its own samples come with --verbose only; the fit's summary line comes either way.
+TEST(Cli, CrossValidationTablesComeWithVerbose) {
+  const std::string out = MakeTempDir() + "/m.json";
+  for (const bool verbose : {false, true}) {
+    std::vector<std::string> args = {"fit", "--data", "Cu-Zn", "--method", "smooth", "--out", out};
+    if (verbose) args.push_back("--verbose");
+    const RunResult r = RunProgram(args);
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find("smooth fit: "), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("cross-validation (eps): smoothing 0.001") != std::string::npos, verbose)
+        << r.err;
+    EXPECT_EQ(r.err.find("against its own samples") != std::string::npos, verbose) << r.err;
+  }
+  ExpectCleanError({"fit", "--data", "Cu-Zn", "--out", out, "--verbose", "--quiet"},
+                   {"--verbose", "--quiet"});
 }
 
 class BadInput : public ::testing::Test {
@@ -254,15 +288,21 @@ TEST_F(BadInput, ModelFilesAndRefit) {
   doc["uncertainty"]["gap_exponent"] = 5;
   ExpectCleanError({"predict", "--model", File("gap.json", doc.dump()), "--x", "0.5"},
                    {"gap.json", "uncertainty.gap_exponent"});
-  // Refit: reports the added samples, keeps the old model.
-  r = RunProgram({"fit", "--data", "Au-Ag", "--from", model, "--out", dir_ + "/new.json"});
+  // Refit: reports the added samples, keeps the old model; the report is what --refit asks
+  // for, so --quiet keeps it. The old name --from still works, with a note.
+  r = RunProgram(
+      {"fit", "--data", "Au-Ag", "--refit", model, "--out", dir_ + "/new.json", "--quiet"});
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.err.find("added sample Rioux-Au30Ag70.yml"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("final cost"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("refit: final cost"), std::string::npos) << r.err;
+  r = RunProgram({"fit", "--data", "Au-Ag", "--from", model, "--out", dir_ + "/new2.json"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("--from is now --refit"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("added sample Rioux-Au30Ag70.yml"), std::string::npos) << r.err;
   std::ifstream again(model);
   EXPECT_EQ(std::string((std::istreambuf_iterator<char>(again)), std::istreambuf_iterator<char>()),
             text);
-  ExpectCleanError({"fit", "--data", "Au-Ag", "--from", model, "--out", model}, {"--from"});
+  ExpectCleanError({"fit", "--data", "Au-Ag", "--refit", model, "--out", model}, {"--refit"});
   // A failing fit leaves the old file byte-identical.
   ExpectCleanError({"fit", "--data", dir_ + "/none", "--out", model}, {"none"});
   std::ifstream kept(model);

@@ -428,7 +428,7 @@ TEST(Messages, AModelWithAStringFinalCostNamesTheField) {
   text = text.substr(0, at) + "\"final_cost\": \"cheap\"" + text.substr(end);
   WriteText(model, text);
   ExpectOneError(RunProgram({"color", "--model", model, "--x", "0.5"}), {"m.json", "final_cost"});
-  ExpectOneError(RunProgram({"fit", "--data", "Au-Ag", "--method", "smooth", "--from", model,
+  ExpectOneError(RunProgram({"fit", "--data", "Au-Ag", "--method", "smooth", "--refit", model,
                              "--out", dir + "/new.json", "--quiet"}),
                  {"m.json", "final_cost"});
 }

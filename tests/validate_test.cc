@@ -128,8 +128,9 @@ TEST_F(AuAgHoldout, DeltaE00AgreesWithPredictOutput) {
     const RunResult fit = RunProgram({"fit", "--data", DataDir() + "/Au-Ag", "--exclude", "0.3,0.7",
                                       "--method", method, "--out", model, "--quiet"});
     ASSERT_EQ(fit.status, 0) << fit.err;
-    const RunResult predict = RunProgram(
-        {"predict", "--model", model, "--x", "0.3", "--from", "360", "--to", "830", "--step", "1"});
+    const RunResult predict =
+        RunProgram({"predict", "--model", model, "--x", "0.3", "--lambda-from", "360",
+                    "--lambda-to", "830", "--lambda-step", "1"});
     ASSERT_EQ(predict.status, 0) << predict.err;
     const std::string csv = *dir_ + "/" + method + ".csv";
     testing::WriteText(csv, predict.out);

@@ -46,6 +46,7 @@ std::unique_ptr<AlloyModel> BuildSmooth(const Dataset& dataset, const FitSetting
     throw Error("--space: '" + space + "' is none of eps, log_eps");
   }
   options.progress = settings.progress;
+  options.details = settings.details;
   if (settings.lambda_from_nm != 0 || settings.lambda_to_nm != 0) {
     const double step = settings.lambda_step_nm > 0 ? settings.lambda_step_nm : 5.0;
     if (!(settings.lambda_to_nm > settings.lambda_from_nm) || !(settings.lambda_step_nm >= 0)) {

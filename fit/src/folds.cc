@@ -29,6 +29,7 @@ std::vector<Fold> FitFolds(const MethodInfo& method, const Dataset& dataset,
   inner.calibrate = false;
   inner.fold = true;
   inner.progress = {};
+  inner.details = {};
   inner.parent = &model;
   inner.start = method.traits.warm_start_folds ? &model : nullptr;
   std::vector<Fold> folds(xs.size());

@@ -197,6 +197,7 @@ Scored BuildChoosingDegree(const MethodInfo& method, const Dataset& dataset,
     FitSettings at = settings;
     at.degree = degree;
     at.progress = {};
+    at.details = {};
     at.covariance = false;
     at.max_iterations = kCandidateIterations;
     Scored r = candidates.empty() ? BuildScored(method, dataset, at)
@@ -387,7 +388,6 @@ std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings&
                        std::to_string(DistinctCompositions(dataset).size()) +
                        " compositions leave none to hold out (every interpolation is then the "
                        "straight line between the samples)";
-    Report(settings.progress, "auto: " + selection.reason);
     std::unique_ptr<AlloyModel> model = BuildModel(order.front()->name, dataset, settings);
     FitSummary summary = model->fit_summary();
     summary.selection = selection;
@@ -398,6 +398,7 @@ std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings&
   // error): the folds score it, and the chosen one is already built.
   FitSettings inner = settings;
   inner.progress = {};
+  inner.details = {};
   inner.start = nullptr;
   std::vector<Scored> candidates;
   std::vector<bool> misses_end;
@@ -461,7 +462,6 @@ std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings&
   }
   selection.reason = ChoiceReason(selection, c, order);
   std::unique_ptr<AlloyModel> model = std::move(candidates[c.chosen].model);
-  Report(settings.progress, "auto: " + selection.reason);
   FitSummary summary = model->fit_summary();
   summary.selection = selection;
   model->set_fit_summary(std::move(summary));

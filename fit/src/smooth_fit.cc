@@ -654,7 +654,7 @@ double CrossValidatedSmoothing(const GridData& g, const std::vector<std::vector<
     std::ostringstream msg;
     msg << "cross-validation" << space << ": smoothing " << candidate
         << ", leave-one-out RMS error: relative eps " << rms << ", reflectance " << rms_r;
-    Report(options.progress, msg.str());
+    Report(options.details, msg.str());
     if (rms_r < f->score) {
       f->score = rms_r;
       smoothing = candidate;
@@ -685,7 +685,7 @@ double MarginalLikelihoodSmoothing(const GridData& g, const std::vector<double>&
     if (nodes > 0) msg << " " << candidate << " at " << nodes << ",";
   }
   msg << " of " << grid.size() << " wavelengths";
-  Report(options.progress, msg.str());
+  Report(options.details, msg.str());
   std::vector<double> sorted = result->smoothing_per_node;
   std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
   return sorted[sorted.size() / 2];
@@ -707,7 +707,7 @@ bool GaussianProcessWins(const GridData& g, const std::vector<std::vector<double
   msg << "cross-validation" << space << ": gaussian process, leave-one-out RMS error: relative eps "
       << result.gp_rms << ", reflectance " << result.gp_rms_reflectance
       << (use_gp ? " (chosen)" : "");
-  Report(options.progress, msg.str());
+  Report(options.details, msg.str());
   return use_gp;
 }
 
@@ -804,7 +804,7 @@ SmoothFitResult FitSmooth(const Dataset& dataset, const SmoothFitOptions& option
     reason << "leave-one-out RMS reflectance error " << fit.score << " in eps, " << log.score
            << " in ln eps: " << (use_log ? "ln eps" : "eps");
     space_chosen_by = reason.str();
-    Report(options.progress, "space: " + space_chosen_by);
+    Report(options.details, "space: " + space_chosen_by);
     if (use_log) fit = std::move(log);
   } else if (!options.space) {
     space_chosen_by = "default: no interior composition to hold out";
@@ -813,7 +813,7 @@ SmoothFitResult FitSmooth(const Dataset& dataset, const SmoothFitOptions& option
   Solution& s = fit.solution;
   const double smoothing = fit.smoothing;
   const bool use_gp = fit.use_gp;
-  Report(options.progress,
+  Report(options.details,
          "fitted " + std::to_string(g.x.size()) + " samples x " + std::to_string(grid.size()) +
              " wavelengths in " + (s.space == SmoothSpace::kLogEps ? "ln eps" : "eps") + ", " +
              (use_gp ? std::string("gaussian process across composition")

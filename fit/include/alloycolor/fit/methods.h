@@ -60,7 +60,8 @@ struct FitSettings {
   const AlloyModel* start = nullptr;  // refit: start from this model (same method)
   int max_iterations = 0;             // physical: the solver's iterations, 0 for the fit's default
   std::shared_ptr<FitMemo> memo;      // null: BuildModel makes one for this fit alone
-  ProgressCallback progress;          // may be empty
+  ProgressCallback progress;          // may be empty: a line per step of the work
+  ProgressCallback details;           // may be empty: cross-validation tables and the like
   // auto (required there): the colorimeter its leave-one-out scores colour with, at normal
   // incidence; data without colour (infrared) are scored by reflectance.
   const color::Colorimeter* colorimeter = nullptr;

@@ -64,6 +64,7 @@ struct SmoothFitOptions {
   std::optional<SmoothSpace> space;
   const SmoothModel* start = nullptr;  // refit: start from this model's eps at the knots
   ProgressCallback progress;           // may be empty
+  ProgressCallback details;            // may be empty: each candidate's cross-validation
 };
 
 // The candidates cross-validation tries.

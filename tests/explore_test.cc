@@ -22,6 +22,7 @@
 #include <regex>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "alloycolor/color/colorimetry.h"
@@ -329,6 +330,44 @@ class ExplorePages : public ::testing::Test {
     }
     const double de = std::stod(Value(dom, "de00"));
     EXPECT_NEAR(de, color::DeltaE00(labs[0], labs[1]), 0.05) << hash;
+    // The window drawn on slider A: `alloycolor tolerance --de 1` at the page's light and
+    // angle (the page walks its tables, the program the model).
+    std::vector<std::string> args = {"tolerance"};
+    args.insert(args.end(), source.begin(), source.end());
+    for (const std::string& a :
+         {std::string("--x"), x, std::string("--de"), std::string("1"), std::string("--angles"),
+          std::to_string(angle), std::string("--illuminants"), ill, std::string("--json"),
+          std::string("--quiet")}) {
+      args.push_back(a);
+    }
+    const RunResult t = RunProgram(args);
+    ASSERT_EQ(t.status, 0) << t.err;
+    const nlohmann::json window = nlohmann::json::parse(t.out);
+    EXPECT_NEAR(std::stod(Attribute(dom, "window-a", "data-lo")), window["x_low"].get<double>(),
+                2e-3)
+        << hash;
+    EXPECT_NEAR(std::stod(Attribute(dom, "window-a", "data-hi")), window["x_high"].get<double>(),
+                2e-3)
+        << hash;
+  }
+
+  // Types `target` into the page's match box and presses Find (a script added after the
+  // page's own); returns the matches the box lists.
+  static nlohmann::json MatchBox(const std::string& page, const std::string& target) {
+    std::string html = ReadText(page);
+    const std::size_t end = html.rfind("</body>");
+    html.insert(end, "<script>document.getElementById('match-target').value = " +
+                         nlohmann::json(target).dump() +
+                         "; document.getElementById('match-go').click();</script>");
+    WriteText(*dir_ + "/match.html", html);
+    const std::string dom = DumpDom(*dir_, "file://" + *dir_ + "/match.html");
+    const std::string matches = Attribute(dom, "match-result", "data-matches");
+    if (matches.empty()) return nlohmann::json();
+    std::string text = matches;  // the DOM serialises '"' in attributes as &quot;
+    for (std::size_t at; (at = text.find("&quot;")) != std::string::npos;) {
+      text.replace(at, 6, "\"");
+    }
+    return nlohmann::json::parse(text);
   }
 
   static std::string* dir_;
@@ -390,6 +429,20 @@ TEST_F(ExplorePages, PaperPageShowsWhatColorAndRenderGive) {
   CheckAddress(page, source, "0.75", "0.55", "D65", 0.0, true);
   CheckAddress(page, source, "18k", "14k", "A", 45.0, true);
   CheckAddress(page, source, "0.3333", "0.9137", "D50", 72.5, true);
+  // The match box (D65, 0 degrees: the page's default view) finds what `match` finds.
+  for (const auto& [target, option, value] :
+       {std::tuple{"#f2e6b0", "--hex", "#f2e6b0"}, {"85, 2, 25", "--lab", "85,2,25"}}) {
+    const nlohmann::json shown = MatchBox(page, target);
+    ASSERT_TRUE(shown.is_array() && !shown.empty()) << target;
+    const std::vector<std::string> args = {
+        "match", "--data", DataDir() + "/Au-Ag", "--method", "paper", option, value, "--json"};
+    const RunResult r = RunProgram(args);
+    ASSERT_EQ(r.status, 0) << r.err;
+    const nlohmann::json expected = nlohmann::json::parse(r.out)["matches"];
+    EXPECT_NEAR(shown[0]["x_atomic"].get<double>(), expected[0]["x_atomic"].get<double>(), 2e-3)
+        << target;
+    EXPECT_NEAR(shown[0]["de00"].get<double>(), expected[0]["de00"].get<double>(), 0.05) << target;
+  }
 }
 
 TEST_F(ExplorePages, SmoothPageShowsWhatColorAndRenderGiveWithUncertainty) {

@@ -91,15 +91,7 @@ function tileLight(tile, r) {
 
 // ---- Interpolating the tables.
 function weightsAt(x) { return C.segmentWeights(C.findSegment(SEGMENTS, x), x); }
-function rowAt(ill, r, x) {
-  const { first, w } = weightsAt(x);
-  const row = 3 * muNodes(r), src = ILLS[ill].xyz[r], out = new Float64Array(row);
-  for (let q = 0; q < 4; q++) {
-    const base = (first + q) * row, wq = w[q];
-    for (let i = 0; i < row; i++) out[i] += wq * src[base + i];
-  }
-  return out;
-}
+function rowAt(ill, r, x) { return C.rowAtX(SEGMENTS, ILLS[ill].xyz[r], 3 * muNodes(r), x); }
 function spectrumAt(x) {
   const { first, w } = weightsAt(x), out = {};
   for (const key of ["n", "k", "r"]) {
@@ -201,6 +193,53 @@ function verdict(de) {
   return "different colours at a glance";
 }
 
+// ---- From colour to composition (as 'alloycolor match' and 'tolerance', on the tables):
+// the match box moves slider A to the composition whose colour is closest to a target, and
+// slider A shows the window within which the colour stays within ΔE00 1 of A's, both
+// under the light source and at the angle shown.
+const MATCH_SCAN_POINTS = 1001;       // color::kMatchScanPoints
+const MATCH_MARGIN_DE00 = 1;          // other minima within this of the best are listed
+const REACHABLE_DE00 = 1;             // color::kReachableDeltaE00
+const TOLERANCE_DE00 = 1;
+const TOLERANCE_STEP = 5e-4;          // color::kToleranceStep
+function labAt(x) {
+  const mu = Math.max(0, Math.cos(state.angle * Math.PI / 180));
+  return C.labFromXYZ(C.xyzAtMu(rowAt(state.ill, 0, x), mu), ILLS[state.ill].white);
+}
+function findComposition() {
+  const box = $("match-target"), out = $("match-result");
+  const target = I.parseColourTarget(box.value);
+  if (!target) {
+    box.classList.add("bad");
+    out.textContent = "type #rrggbb (8-bit sRGB) or L*, a*, b*";
+    return;
+  }
+  box.classList.remove("bad");
+  const lab = target.lab || C.labFromSRGB8(MATRIX, target.rgb8, ILLS[state.ill].white);
+  const found = C.minimaOf((x) => C.deltaE00(lab, labAt(x)), X_LO, X_HI, MATCH_SCAN_POINTS, MATCH_MARGIN_DE00);
+  const best = found[0], name = (m) => I.describeComposition(m.x, SYS).main;
+  const others = found.slice(1).map((m) => `${name(m)} (ΔE00 ${fixed(m.value, 2)})`);
+  out.replaceChildren(
+    best.value > REACHABLE_DE00 ? `not reachable with ${SYS.a}-${SYS.b}: the closest is ` : "A: ",
+    el("b", {}, name(best)), `, ΔE00 ${fixed(best.value, 2)} left`,
+    others.length ? "; as close: " + others.join(", ") : "");
+  out.dataset.matches = JSON.stringify(found.map((m) => ({ x_atomic: m.x, de00: m.value })));
+  state.x = best.x;
+  update();
+}
+function drawWindow(a) {
+  const w = C.windowAround((x) => C.deltaE00(a.lab, labAt(x)), a.x, TOLERANCE_DE00, X_LO, X_HI, TOLERANCE_STEP);
+  const span = X_HI - X_LO || 1, band = $("window-a");
+  band.style.left = `calc(8px + ${(w.lo - X_LO) / span} * (100% - 16px))`;
+  band.style.width = `calc(${(w.hi - w.lo) / span} * (100% - 16px))`;
+  const lo = I.describeComposition(w.lo, SYS).main, hi = I.describeComposition(w.hi, SYS).main;
+  band.title = `Within ΔE00 ${TOLERANCE_DE00} of A's colour (${ILLS[state.ill].name}, ${fixed(state.angle, 1)}°): ` +
+    `${lo} to ${hi}` + (w.clippedLo || w.clippedHi ? " (clipped at the model's range)" : "");
+  band.dataset.lo = w.lo;
+  band.dataset.hi = w.hi;
+  return w;
+}
+
 // ---- Plots.
 function niceTicks(lo, hi, count) {
   const span = hi - lo || 1, raw = span / count, mag = Math.pow(10, Math.floor(Math.log10(raw)));
@@ -276,6 +315,10 @@ function render() {
     fillCard(key, m);
     const d = I.describeComposition(m.x, SYS);
     $(key + "-readout").replaceChildren(el("b", {}, d.main), " · " + d.rest);
+    if (key === "a") {
+      const w = drawWindow(m);
+      $("a-readout").append(` · within ΔE00 ${TOLERANCE_DE00}: ${I.describeComposition(w.lo, SYS).main} to ${I.describeComposition(w.hi, SYS).main}`);
+    }
     const input = $("x-" + key), text = $("x-" + key + "-text");
     if (Math.abs(parseFloat(input.value) - m.x) > 1e-12) input.value = m.x;
     if (document.activeElement !== text) { text.value = d.main; text.classList.remove("bad"); }
@@ -329,6 +372,8 @@ function setup() {
       return tick;
     }));
   }
+  $("match-go").onclick = findComposition;
+  $("match-target").onkeydown = (e) => { if (e.key === "Enter") findComposition(); };
   const roughNote = FINISHES.length > 1
     ? ` The finishes other than polished are GGX microfacet surfaces (roughness ${FINISHES.slice(1).join(", ")}), tabulated the same way; they change the pictures only.`
     : "";

@@ -89,6 +89,17 @@ const AlloyColour = (() => {
     while (s + 1 < segments.length && x > segments[s].hi) s++;
     return segments[s];
   }
+  // The table's row at composition x: the nodes' rows (src[node * rowLength + i]) weighted
+  // by segmentWeights, as the page shades from them.
+  function rowAtX(segments, src, rowLength, x) {
+    const { first, w } = segmentWeights(findSegment(segments, x), x);
+    const out = new Float64Array(rowLength);
+    for (let q = 0; q < 4; q++) {
+      const base = (first + q) * rowLength, wq = w[q];
+      for (let i = 0; i < rowLength; i++) out[i] += wq * src[base + i];
+    }
+    return out;
+  }
   // XYZ at mu = cos(angle) from a row of XYZ triples on mu = 0, 1/(m-1), ..., 1: linear.
   function xyzAtMu(row, mu) {
     const m = row.length / 3, t = Math.min(Math.max(mu, 0), 1) * (m - 1);
@@ -109,7 +120,73 @@ const AlloyColour = (() => {
     const at = (nd) => (na > 1 ? sigma[nd * na + a] * (1 - g) + sigma[nd * na + a + 1] * g : sigma[nd * na]);
     return at(node) * (1 - f) + at(node + 1) * f;
   }
+  // ---- From colour to composition (color/match.h, on the page's tables).
+  // The inverse of a 3 x 3 matrix given row by row (the cofactors over the determinant).
+  function invert3(m) {
+    const [a, b, c] = m, det = a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+                              a[2] * (b[0] * c[1] - b[1] * c[0]);
+    return [[(b[1] * c[2] - b[2] * c[1]) / det, (a[2] * c[1] - a[1] * c[2]) / det, (a[1] * b[2] - a[2] * b[1]) / det],
+            [(b[2] * c[0] - b[0] * c[2]) / det, (a[0] * c[2] - a[2] * c[0]) / det, (a[2] * b[0] - a[0] * b[2]) / det],
+            [(b[0] * c[1] - b[1] * c[0]) / det, (a[1] * c[0] - a[0] * c[1]) / det, (a[0] * b[1] - a[1] * b[0]) / det]];
+  }
+  const srgbDecode = (v) => (v <= 0.04045 ? v / 12.92 : Math.pow((v + 0.055) / 1.055, 2.4));
+  // CIELAB of an 8-bit sRGB colour (no chromatic adaptation, as the page shows colours)
+  // against the illuminant's white, as LabFromHex; m: the XYZ -> linear sRGB matrix.
+  function labFromSRGB8(m, rgb8, white) {
+    const linear = rgb8.map((v) => srgbDecode(v / 255));
+    return labFromXYZ(linearSRGBFromXYZ(invert3(m), linear), white);
+  }
+
+  // Golden-section search for the minimum of f on [a, b] (f unimodal there), to `tol`.
+  function goldenMinimum(f, a, b, tol) {
+    const r = (Math.sqrt(5) - 1) / 2;
+    let c = b - r * (b - a), d = a + r * (b - a), fc = f(c), fd = f(d);
+    while (b - a > tol) {
+      if (fc <= fd) { b = d; d = c; fd = fc; c = b - r * (b - a); fc = f(c); }
+      else { a = c; c = d; fc = fd; d = a + r * (b - a); fd = f(d); }
+    }
+    const x = 0.5 * (a + b), fx = f(x);
+    return fx <= Math.min(fc, fd) ? { x, value: fx } : (fc <= fd ? { x: c, value: fc } : { x: d, value: fd });
+  }
+  // The local minima of f over [lo, hi], as color::Match finds them: f at n evenly spaced
+  // points, every local minimum of the scan (ends included) refined inside its two
+  // neighbouring intervals; those within `margin` of the best, best first.
+  function minimaOf(f, lo, hi, n, margin) {
+    const xs = [], fs = [];
+    for (let i = 0; i < n; i++) { xs.push(lo + (hi - lo) * i / (n - 1)); fs.push(f(xs[i])); }
+    const found = [];
+    for (let i = 0; i < n; i++) {
+      if ((i > 0 && fs[i - 1] < fs[i]) || (i + 1 < n && fs[i + 1] < fs[i])) continue;
+      if (i > 0 && fs[i - 1] === fs[i]) continue;  // a flat run: its first point only
+      const m = goldenMinimum(f, xs[Math.max(i - 1, 0)], xs[Math.min(i + 1, n - 1)], 1e-9 * (hi - lo || 1));
+      found.push(m.value <= fs[i] ? m : { x: xs[i], value: fs[i] });
+    }
+    found.sort((p, q) => p.value - q.value);
+    return found.filter((m) => m.value <= found[0].value + margin);
+  }
+  // The largest interval around x0 inside [lo, hi] where g(x) <= limit (g(x0) = 0, g
+  // continuous): walked out in steps of `step` and bisected at the first step that leaves
+  // it, as color::Tolerance. clippedLo / clippedHi: the window reaches the range's end.
+  function windowAround(g, x0, limit, lo, hi, step) {
+    const edge = (dir, end) => {
+      let inside = x0;
+      for (;;) {
+        const next = dir > 0 ? Math.min(inside + step, end) : Math.max(inside - step, end);
+        if (g(next) > limit) {
+          let a = inside, b = next;
+          while (Math.abs(b - a) > 1e-9) { const mid = 0.5 * (a + b); if (g(mid) > limit) b = mid; else a = mid; }
+          return { x: a, clipped: false };
+        }
+        if (next === end) return { x: end, clipped: true };
+        inside = next;
+      }
+    };
+    const l = edge(-1, lo), h = edge(1, hi);
+    return { lo: l.x, hi: h.x, clippedLo: l.clipped, clippedHi: h.clipped };
+  }
+
   return { labFromXYZ, linearSRGBFromXYZ, srgbEncode, srgb8, hex, deltaE00, weightFromAtomic,
-           atomicFromWeight, segmentWeights, findSegment, xyzAtMu, nodeAngleLinear };
+           atomicFromWeight, segmentWeights, findSegment, rowAtX, xyzAtMu, nodeAngleLinear, invert3,
+           labFromSRGB8, minimaOf, windowAround };
 })();
 if (typeof module !== "undefined") module.exports = AlloyColour;

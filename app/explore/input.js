@@ -107,7 +107,20 @@ const AlloyInput = (() => {
            "&angle=" + view.angle + "&light=" + view.light + "&rough=" + ctx.roughness[view.rough];
   }
 
+  // A target colour as typed in the page's match box: 8-bit sRGB as "#rrggbb" (or
+  // "rrggbb"), or CIELAB as three numbers "L*, a*, b*" (commas or spaces; L* in 0-100).
+  // Returns { rgb8 } or { lab }, or null for anything else.
+  function parseColourTarget(text) {
+    const t = String(text).trim();
+    const hexMatch = /^#?([0-9a-fA-F]{6})$/.exec(t);
+    if (hexMatch) return { rgb8: [0, 2, 4].map((i) => parseInt(hexMatch[1].slice(i, i + 2), 16)) };
+    const parts = t.split(/[\s,;]+/).filter((p) => p !== "");
+    if (parts.length !== 3 || !parts.every((p) => /^[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$/.test(p))) return null;
+    const lab = parts.map(Number);
+    return lab[0] >= 0 && lab[0] <= 100 && lab.every(Number.isFinite) ? { lab } : null;
+  }
+
   return { parseComposition, karat, describeComposition, compositionInRange, defaultView,
-           parseAddress, formatAddress };
+           parseAddress, formatAddress, parseColourTarget };
 })();
 if (typeof module !== "undefined") module.exports = AlloyInput;

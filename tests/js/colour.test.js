@@ -130,3 +130,53 @@ test("sigma is linear between composition nodes and between angles", () => {
   near(C.nodeAngleLinear([7, 9], [{ lo: 0, hi: 1, intervals: 1, first: 0 }], [0], 0.5, 40), 8, 1e-12,
        "one angle");
 });
+
+test("the inverse of the sRGB matrix gives back the identity", () => {
+  // IEC 61966-2-1's XYZ -> linear sRGB matrix.
+  const m = [[3.2406, -1.5372, -0.4986], [-0.9689, 1.8758, 0.0415], [0.0557, -0.2040, 1.0570]];
+  const inv = C.invert3(m);
+  for (let i = 0; i < 3; i++) {
+    for (let j = 0; j < 3; j++) {
+      const v = m[i][0] * inv[0][j] + m[i][1] * inv[1][j] + m[i][2] * inv[2][j];
+      near(v, i === j ? 1 : 0, 1e-12, `(M M^-1)[${i}][${j}]`);
+    }
+  }
+});
+
+test("an 8-bit sRGB colour in CIELAB matches colour-science", () => {
+  // colour.XYZ_to_Lab(colour.sRGB_to_XYZ([1, 0, 0]), D65 = xy (0.3127, 0.3290)):
+  // L* 53.2408, a* 80.0925, b* 67.2032; white gives L* 100, a* = b* = 0.
+  const m = [[3.2406, -1.5372, -0.4986], [-0.9689, 1.8758, 0.0415], [0.0557, -0.2040, 1.0570]];
+  const white = [0.3127 / 0.329, 1, (1 - 0.3127 - 0.329) / 0.329];
+  const red = C.labFromSRGB8(m, [255, 0, 0], white);
+  near(red[0], 53.2408, 0.02, "L*"); near(red[1], 80.0925, 0.05, "a*"); near(red[2], 67.2032, 0.05, "b*");
+  const grey = C.labFromSRGB8(m, [255, 255, 255], white);
+  near(grey[0], 100, 0.01, "white L*"); near(grey[1], 0, 0.01, "white a*"); near(grey[2], 0, 0.01, "white b*");
+});
+
+test("minimaOf finds every local minimum, best first, and those within the margin only", () => {
+  // (x - 0.3)^2 ((x - 0.8)^2 + 0.01): zero at 0.3; a second minimum near 0.778 (d/dx = 0:
+  // (x-0.8)^2 + 0.01 + (x-0.3)(x-0.8) = 0, i.e. 2x^2 - 2.7x + 0.89 = 0: its larger root; the
+  // smaller, 0.572, is the maximum between).
+  const f = (x) => (x - 0.3) ** 2 * ((x - 0.8) ** 2 + 0.01);
+  const second = (2.7 + Math.sqrt(2.7 * 2.7 - 8 * 0.89)) / 4;
+  const found = C.minimaOf(f, 0, 1, 101, 1);
+  assert.strictEqual(found.length, 2);
+  near(found[0].x, 0.3, 1e-6, "best");
+  near(found[1].x, second, 1e-6, "second");
+  assert.strictEqual(C.minimaOf(f, 0, 1, 101, 1e-4).length, 1);
+  // A minimum at the end of the range: f decreasing throughout.
+  near(C.minimaOf((x) => 1 - x, 0, 1, 11, 1)[0].x, 1, 1e-9, "end");
+});
+
+test("windowAround walks out to where g first exceeds the limit, and clips at the range", () => {
+  const v = (x0, slope) => (x) => slope * Math.abs(x - x0);
+  let w = C.windowAround(v(0.5, 10), 0.5, 1, 0, 1, 5e-4);
+  near(w.lo, 0.4, 1e-8, "low"); near(w.hi, 0.6, 1e-8, "high");
+  assert.ok(!w.clippedLo && !w.clippedHi);
+  w = C.windowAround(v(0.05, 10), 0.05, 1, 0, 1, 5e-4);
+  assert.strictEqual(w.lo, 0); assert.ok(w.clippedLo); near(w.hi, 0.15, 1e-8, "high");
+  // The first crossing, not the last: g comes back under the limit further out.
+  w = C.windowAround((x) => Math.abs(Math.sin(20 * (x - 0.5))), 0.5, 0.5, 0, 1, 5e-4);
+  near(w.hi, 0.5 + Math.asin(0.5) / 20, 1e-8, "first crossing");
+});

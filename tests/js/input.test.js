@@ -83,3 +83,14 @@ test("the address of a view reads back as that view", () => {
   assert.deepStrictEqual(back.bad, []);
   assert.deepStrictEqual(back.view, { ...view, x: 0.123457 });
 });
+
+test("a target colour is #rrggbb or three CIELAB numbers, nothing else", () => {
+  assert.deepStrictEqual(I.parseColourTarget(" #C8a46e "), { rgb8: [200, 164, 110] });
+  assert.deepStrictEqual(I.parseColourTarget("c8a46e"), { rgb8: [200, 164, 110] });
+  assert.deepStrictEqual(I.parseColourTarget("80, 5.5, -3e1"), { lab: [80, 5.5, -30] });
+  assert.deepStrictEqual(I.parseColourTarget("80 5 30"), { lab: [80, 5, 30] });
+  for (const bad of ["", "#c8a46", "#c8a46e0", "#zzzzzz", "80, 5", "80, 5, 30, 1", "120, 0, 0", "-1, 0, 0",
+                     "80, five, 30", "80,,5", "NaN, 0, 0", "<b>80</b>, 0, 0"]) {
+    assert.strictEqual(I.parseColourTarget(bad), null, JSON.stringify(bad));
+  }
+});

@@ -24,6 +24,7 @@
 #include <filesystem>
 #include <iterator>
 #include <limits>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -88,6 +89,28 @@ TEST(DeltaE00Test, LightnessOnlyDifferenceAtMidGreyIsTheLightnessDifference) {
   // With a = b = 0 and mean L = 50: S_L = 1 and the chroma and hue terms
   // vanish.
   EXPECT_NEAR(DeltaE00({49.0, 0.0, 0.0}, {51.0, 0.0, 0.0}), 2.0, 1e-12);
+}
+
+// The lower bound holds on the published pairs and on a million random pairs (all of
+// CIELAB, and pairs within a few units, where scans look), and is not trivially small.
+TEST(DeltaE00Test, LowerBoundNeverExceedsIt) {
+  for (const SharmaPair& pair : SharmaPairs()) {
+    EXPECT_LE(DeltaE00LowerBound(pair.lab1, pair.lab2), DeltaE00(pair.lab1, pair.lab2) + 1e-12);
+  }
+  std::mt19937 rng(2000);
+  std::uniform_real_distribution<double> l(0.0, 100.0), ab(-128.0, 128.0), near(-4.0, 4.0);
+  double ratio_sum = 0;
+  constexpr int kPairs = 1000000;
+  for (int i = 0; i < kPairs; ++i) {
+    const Lab a{l(rng), ab(rng), ab(rng)};
+    const Lab b = i % 2 ? Lab{l(rng), ab(rng), ab(rng)}
+                        : Lab{a.L + near(rng), a.a + near(rng), a.b + near(rng)};
+    const double de = DeltaE00(a, b), bound = DeltaE00LowerBound(a, b);
+    ASSERT_LE(bound, de * (1 + 1e-12) + 1e-12)
+        << a.L << "," << a.a << "," << a.b << " / " << b.L << "," << b.a << "," << b.b;
+    if (de > 0) ratio_sum += bound / de;
+  }
+  EXPECT_GT(ratio_sum / kPairs, 0.2);  // useful: on average a fifth of the value or more
 }
 
 // ---------------------------------------------------------------------------------------

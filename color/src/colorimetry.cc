@@ -410,4 +410,18 @@ double DeltaE00(const Lab& lab1, const Lab& lab2) {
   return std::sqrt(dl * dl + dc * dc + dh * dh + r_t * dc * dh);
 }
 
+double DeltaE00LowerBound(const Lab& lab1, const Lab& lab2) {
+  const double c_ab_mean = 0.5 * (std::sqrt(lab1.a * lab1.a + lab1.b * lab1.b) +
+                                  std::sqrt(lab2.a * lab2.a + lab2.b * lab2.b));
+  const double c_max7 = Pow7(1.5 * c_ab_mean);
+  const double r_t_max = std::sqrt(3.0) * std::sqrt(c_max7 / (c_max7 + k25Pow7));  // sin60 2 sqrt
+  const double s_c_max = 1.0 + 0.0675 * c_ab_mean;
+  const double l_mean = 0.5 * (lab1.L + lab2.L);
+  const double l50 = (l_mean - 50.0) * (l_mean - 50.0);
+  const double s_l = 1.0 + 0.015 * l50 / std::sqrt(20.0 + l50);
+  const double dl = (lab2.L - lab1.L) / s_l;
+  const double da = lab2.a - lab1.a, db = lab2.b - lab1.b;
+  return std::sqrt(dl * dl + (1.0 - 0.5 * r_t_max) * (da * da + db * db) / (s_c_max * s_c_max));
+}
+
 }  // namespace alloycolor::color

@@ -98,12 +98,14 @@ std::vector<size_t> LocalMinima(const std::vector<double>& d) {
   return minima;
 }
 
-// Scans, refines and keeps the minima within margin of the best, best first.
+// Scans, refines and keeps the minima within margin of the best, best first. `consider`
+// (null: every point) marks the scan points whose minima may be kept.
 std::vector<Match> Minimise(const std::vector<double>& scan_x, const std::vector<double>& scan_d,
                             const std::function<double(double)>& exact, double margin,
-                            const std::string& what) {
+                            const std::string& what, const std::vector<char>* consider = nullptr) {
   std::vector<Match> found;
   for (const size_t i : LocalMinima(scan_d)) {
+    if (consider != nullptr && !(*consider)[i]) continue;
     const double lo = scan_x[i == 0 ? 0 : i - 1];
     const double hi = scan_x[std::min(i + 1, scan_x.size() - 1)];
     Match m;
@@ -177,6 +179,9 @@ ColourMatcher::ColourMatcher(const Colorimeter& colorimeter, const AlloyModel& m
     scan_x_[i] = i + 1 == n ? hi : lo + (hi - lo) * i / (n - 1);
     scan_lab_[i] = LabFromXYZ(sweep_->XYZAt(scan_x_[i]), colorimeter.White());
   }
+  for (int i = 0; i + 1 < n; ++i) {
+    scan_slack_de00_ = std::max(scan_slack_de00_, 2 * DeltaE00(scan_lab_[i], scan_lab_[i + 1]));
+  }
 }
 
 ColourMatcher::~ColourMatcher() = default;
@@ -216,10 +221,31 @@ std::vector<Match> ColourMatcher::Find(const Lab& target) const {
     throw Error("match: the target colour L*a*b* = " + FormatNumber(target.L) + "," +
                 FormatNumber(target.a) + "," + FormatNumber(target.b) + " is not finite");
   }
-  std::vector<double> d(scan_lab_.size());
-  for (size_t i = 0; i < d.size(); ++i) d[i] = DeltaE00(target, scan_lab_[i]);
+  // DeltaE00 is needed only at scan points where it may come within the margin of the
+  // best (and at their neighbours, which decide whether they are minima): a point whose
+  // lower bound exceeds the closest point's DeltaE00 + margin + the most the colour
+  // changes over its bracket of two scan intervals cannot hold a match. The result is that
+  // of the full scan.
+  const size_t n = scan_lab_.size();
+  std::vector<double> bound(n);
+  size_t closest = 0;
+  for (size_t i = 0; i < n; ++i) {
+    bound[i] = DeltaE00LowerBound(target, scan_lab_[i]);
+    if (bound[i] < bound[closest]) closest = i;
+  }
+  const double reach = DeltaE00(target, scan_lab_[closest]) + options_.margin + scan_slack_de00_;
+  std::vector<double> d(n, std::numeric_limits<double>::infinity());
+  std::vector<char> candidate(n, 0);
+  for (size_t i = 0; i < n; ++i) {
+    if (bound[i] > reach) continue;
+    candidate[i] = 1;
+    for (size_t j = i == 0 ? 0 : i - 1; j <= std::min(i + 1, n - 1); ++j) {
+      if (std::isinf(d[j])) d[j] = DeltaE00(target, scan_lab_[j]);
+    }
+  }
   const auto exact = [&](double x) { return DeltaE00(target, LabAt(x)); };
-  std::vector<Match> matches = Minimise(scan_x_, d, exact, options_.margin, ModelName(model_));
+  std::vector<Match> matches =
+      Minimise(scan_x_, d, exact, options_.margin, ModelName(model_), &candidate);
   for (Match& m : matches) Finish(&m);
   return matches;
 }

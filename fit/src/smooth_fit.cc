@@ -790,6 +790,9 @@ SmoothFitResult FitSmooth(const Dataset& dataset, const SmoothFitOptions& option
     throw Error(dataset.manifest_path + ": the smooth fit needs at least two compositions");
   }
 
+  Report(options.progress, "smooth: fitting " + std::to_string(g.x.size()) + " samples at " +
+                               std::to_string(compositions.size()) + " compositions x " +
+                               std::to_string(grid.size()) + " wavelengths");
   // The space: eps, unless ln eps predicts the left-out compositions better by
   // kLogSpaceMargin (or the caller fixed it).
   const SmoothSpace first = options.space.value_or(SmoothSpace::kEps);

@@ -100,6 +100,9 @@ class ColourMatcher {
   std::unique_ptr<ColorSweep> sweep_;
   std::vector<double> scan_x_;
   std::vector<Lab> scan_lab_;
+  // Twice the largest DeltaE00 between neighbouring scan points: how far the distance to a
+  // target may fall inside a minimum's bracket below its value at the scan point.
+  double scan_slack_de00_ = 0.0;
 };
 
 // One target, one call.

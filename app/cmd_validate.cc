@@ -31,6 +31,7 @@ struct ValidateOptions {
   int observer = 2;
   std::string out;
   bool quiet = false;
+  bool verbose = false;
   int threads = 0;
 };
 
@@ -233,6 +234,7 @@ void Run(const ValidateOptions& o) {
       std::fprintf(stderr, "alloycolor: %6.1f s  %s\n", s, message.c_str());
     };
   }
+  if (o.verbose) options.details = progress;
   const ValidationReport report =
       validate::ComputeValidation(dataset, splits, colorimeter, options, progress);
   // Both files are rendered before either is written, and written as a set.
@@ -283,7 +285,9 @@ void RegisterValidate(CLI::App& app) {
                   "Threads for the splits and their fits (0: all the hardware's)")
       ->capture_default_str()
       ->check(CLI::Range(0, 1024));
-  cmd->add_flag("--quiet", o->quiet, "No progress or warnings on stderr");
+  CLI::Option* quiet = cmd->add_flag("--quiet", o->quiet, "No progress or warnings on stderr");
+  cmd->add_flag("--verbose", o->verbose, "Also a line for every split fitted and scored")
+      ->excludes(quiet);
   cmd->callback([o]() { Run(*o); });
 }
 

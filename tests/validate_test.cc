@@ -251,10 +251,16 @@ TEST(Validate, InfraredDataHaveNoColourButSpectralMetrics) {
   fs::remove_all(dir);
 }
 
+// A line per method by default; with --verbose, a line per split too.
 TEST(Validate, LeaveOneOutReportsProgress) {
   const std::string dir = MakeTempDir();
+  const RunResult quiet = RunProgram({"validate", "--data", DataDir() + "/Cu-Zn", "--loo",
+                                      "--methods", "paper,eps-linear", "--out", dir});
+  ASSERT_EQ(quiet.status, 0) << quiet.err;
+  EXPECT_NE(quiet.err.find("validate: eps-linear on 3 splits"), std::string::npos) << quiet.err;
+  EXPECT_EQ(quiet.err.find("validate [1/6]"), std::string::npos) << quiet.err;
   const RunResult run = RunProgram({"validate", "--data", DataDir() + "/Cu-Zn", "--loo",
-                                    "--methods", "paper,eps-linear", "--out", dir});
+                                    "--methods", "paper,eps-linear", "--out", dir, "--verbose"});
   ASSERT_EQ(run.status, 0) << run.err;
   EXPECT_NE(run.err.find("validate [1/6] paper"), std::string::npos) << run.err;
   EXPECT_NE(run.err.find("validate [6/6] eps-linear"), std::string::npos) << run.err;

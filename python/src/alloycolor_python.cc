@@ -711,6 +711,7 @@ PYBIND11_MODULE(_alloycolor, m) {
           options.angles_deg = angles_deg;
           options.mode = mode;
           const ProgressCallback callback = PythonProgress(progress);
+          options.details = callback;  // a Python caller gets every split's line too
           nlohmann::json json;
           {
             py::gil_scoped_release release;

@@ -437,16 +437,18 @@ ValidationReport ComputeValidation(const Dataset& dataset, const std::vector<Sam
               }
             }
           }
-          if (progress) {
-            const std::lock_guard<std::mutex> lock(progress_mutex);
-            progress("validate [" + std::to_string(++done) + "/" + std::to_string(total) + "] " +
-                     method + ", trained on " + std::to_string(split.train_x.size()) +
-                     " samples, held out x = " + XList(split.holdout_x) +
-                     (std::any_of(holdouts_of[s].begin(), holdouts_of[s].end(),
-                                  [&](size_t h) { return report.holdouts[h].replicate; })
-                          ? " (" + Join(split.holdout_files) + ")"
-                          : std::string()) +
-                     (errors[s].empty() ? "" : ": failed: " + errors[s]));
+          const ProgressCallback& report_split = errors[s].empty() ? options.details : progress;
+          const std::lock_guard<std::mutex> lock(progress_mutex);
+          ++done;
+          if (report_split) {
+            report_split("validate [" + std::to_string(done) + "/" + std::to_string(total) + "] " +
+                         method + ", trained on " + std::to_string(split.train_x.size()) +
+                         " samples, held out x = " + XList(split.holdout_x) +
+                         (std::any_of(holdouts_of[s].begin(), holdouts_of[s].end(),
+                                      [&](size_t h) { return report.holdouts[h].replicate; })
+                              ? " (" + Join(split.holdout_files) + ")"
+                              : std::string()) +
+                         (errors[s].empty() ? "" : ": failed: " + errors[s]));
           }
         },
         options.threads);

@@ -55,6 +55,9 @@ struct ValidationOptions {
   std::string mode;                  // "loo" or "holdout", recorded in the report
   int sigma_draws = 64;              // draws for delta_e00_sigma
   ThreadBudget* threads = nullptr;   // the threads its splits may share; none: in turn
+  // A line per split done (may be empty); the progress callback gets a line per method
+  // and the splits that failed.
+  ProgressCallback details;
 };
 
 // What one method predicts for one held-out sample.

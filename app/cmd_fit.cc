@@ -167,8 +167,7 @@ void Run(const FitOptions& o) {
   }
   std::unique_ptr<AlloyModel> old_model;
   if (!refit.empty()) {
-    old_model = ReadModelFile(refit);
-    NoteInput(refit);
+    old_model = LoadModelArg(refit, false, o.refit.empty() ? "--from" : "--refit");
   }
   // Before the fit: the model must not replace an input (the manifest, a sample, --refit).
   CheckOutputPath(o.out);

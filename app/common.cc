@@ -101,25 +101,32 @@ Dataset LoadDatasetArg(const std::string& arg, bool takes_nk) {
   return dataset;
 }
 
-std::unique_ptr<AlloyModel> LoadModelArg(const std::string& path, bool takes_nk) {
+std::unique_ptr<AlloyModel> LoadModelArg(const std::string& path, bool takes_nk,
+                                         const std::string& option) {
   try {
     auto model = ReadModelFile(path);
     NoteInput(path);
     return model;
   } catch (const Error&) {
+    std::error_code ec;
+    std::string kind;
     switch (GuessInputKind(path)) {
-      case InputKind::kDataset: {
-        std::error_code ec;
-        throw Error(path + ": this is a data set" +
-                    (fs::is_directory(path, ec) ? "" : " manifest") + ": use --data");
-      }
-      case InputKind::kNkFile:
-        throw Error(path + ": this is one sample's n,k, not a model file (which 'alloycolor " +
-                    "fit --out' writes)" + (takes_nk ? ": use --nk" : ""));
-      default:
+      case InputKind::kDataset:
+        kind = std::string("a data set") + (fs::is_directory(path, ec) ? "" : " manifest");
+        if (option == "--model") throw Error(path + ": this is " + kind + ": use --data");
         break;
+      case InputKind::kNkFile:
+        kind = "one sample's n,k";
+        if (option == "--model") {
+          throw Error(path + ": this is " + kind + ", not a model file (which 'alloycolor " +
+                      "fit --out' writes)" + (takes_nk ? ": use --nk" : ""));
+        }
+        break;
+      default:
+        throw;
     }
-    throw;
+    throw Error(path + ": this is " + kind + ", not a model file: " + option +
+                " takes the model an earlier 'alloycolor fit --out' wrote");
   }
 }
 

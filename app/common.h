@@ -35,7 +35,9 @@ Dataset LoadDatasetArg(const std::string& arg, bool takes_nk = false);
 
 // A model file given on the command line, noted as an input; a data set or an n,k file
 // given instead is named as such (and --nk offered where the command takes it).
-std::unique_ptr<AlloyModel> LoadModelArg(const std::string& path, bool takes_nk = false);
+// `option`: the option that named the file, in the messages ("--model", "--refit").
+std::unique_ptr<AlloyModel> LoadModelArg(const std::string& path, bool takes_nk = false,
+                                         const std::string& option = "--model");
 
 // Colorimeter for --illuminant and --observer; the colour tables are noted as inputs.
 color::Colorimeter LoadColorimeter(const std::string& illuminant, int observer_deg);

@@ -377,6 +377,12 @@ TEST_F(BadInput, ADataSetGivenAsAModelAndTheReverseAreNamed) {
       {"gold.csv: this is one sample's n,k", "use --nk"});
   ExpectCleanError({"render", "--model", yml, "--x", "0.5", "--out", dir_ + "/r.png"},
                    {"one sample's n,k, not a model file", "use --nk"});
+  // fit --refit takes a model: a data set or a sample there is named, with what is taken.
+  ExpectCleanError({"fit", "--data", "Au-Ag", "--refit", manifest, "--out", dir_ + "/m.json"},
+                   {manifest + ": this is a data set manifest, not a model file",
+                    "--refit takes the model an earlier 'alloycolor fit --out' wrote"});
+  ExpectCleanError({"fit", "--data", "Au-Ag", "--refit", yml, "--out", dir_ + "/m.json"},
+                   {"one sample's n,k, not a model file: --refit takes"});
   EXPECT_FALSE(std::filesystem::exists(dir_ + "/m.json"));
 }
 

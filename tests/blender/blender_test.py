@@ -10,7 +10,8 @@ transform, 8-bit sRGB PNG) and checks, each within 3 of 8 bits per channel:
   - the centre pixel (normal incidence) of 18k Au-Ag, pure Cu and Cu70Zn30;
   - a pixel near the rim at theta = asin(r) (r: its centre's distance from the axis);
   - the render after the composition property moved by 10 at%, at its new composition,
-    and that the move changes the colour by more than 3 (so drift would be seen).
+    and that the move changes the colour by more than 3 (so drift would be seen);
+  - the approximate mode (Principled BSDF, Base Color = F0) at the centre of Cu70Zn30.
 Exits 77 (skipped) when Blender is absent."""
 import argparse
 import json
@@ -81,20 +82,22 @@ def check(o, tmp):
         rims.append((column, math.degrees(math.asin(r))))
     pixels = [[centre, centre]] + [[column, centre] for column, _ in rims]
 
-    cases = []  # (what, system, property, value, x for `color`)
-    cases.append(("18k Au-Ag", "Au-Ag", "karat", 18.0, "18k"))
-    cases.append(("Cu (x = 1 of Cu-Zn)", "Cu-Zn", "at_percent", 100.0, "1"))
-    cases.append(("Cu70Zn30", "Cu-Zn", "at_percent", 70.0, "0.7"))
+    cases = []  # (what, system, property, value, x for `color`, mode)
+    cases.append(("18k Au-Ag", "Au-Ag", "karat", 18.0, "18k", "TABLE"))
+    cases.append(("Cu (x = 1 of Cu-Zn)", "Cu-Zn", "at_percent", 100.0, "1", "TABLE"))
+    cases.append(("Cu70Zn30", "Cu-Zn", "at_percent", 70.0, "0.7", "TABLE"))
     # 10 at% more gold than 18k (x of 18k from the program itself).
     x18 = colour(o, tables["Au-Ag"][0], "18k", 0.0)[1]
     cases.append(("18k Au-Ag + 10 at%", "Au-Ag", "at_percent", 100.0 * x18 + 10.0,
-                  "%.10f" % (x18 + 0.1)))
+                  "%.10f" % (x18 + 0.1), "TABLE"))
+    cases.append(("Cu70Zn30 approximate", "Cu-Zn", "wt_percent", 69.4, "69.4wt%",
+                  "APPROXIMATE"))
     jobs = {"zip": os.path.abspath(o.zip), "size": SIZE, "ortho_scale": ORTHO_SCALE,
             "samples": SAMPLES, "renders": []}
-    for i, (_, system, prop, value, _) in enumerate(cases):
+    for i, (_, system, prop, value, _, mode) in enumerate(cases):
         jobs["renders"].append({"table": tables[system][1], "property": prop, "value": value,
-                                "png": os.path.join(tmp, "render%d.png" % i),
-                                "pixels": pixels})
+                                "mode": mode, "png": os.path.join(tmp, "render%d.png" % i),
+                                "pixels": pixels if mode == "TABLE" else pixels[:1]})
     jobs_path = os.path.join(tmp, "jobs.json")
     out_path = os.path.join(tmp, "out.json")
     with open(jobs_path, "w") as f:
@@ -111,7 +114,7 @@ def check(o, tmp):
 
     failures = []
     rendered = {}
-    for (what, system, prop, value, x_text), result in zip(cases, out["results"]):
+    for (what, system, prop, value, x_text, mode), result in zip(cases, out["results"]):
         model = tables[system][0]
         centre_want, x = colour(o, model, x_text, 0.0)
         checks = [("centre", centre_want, result["pixels"][0])]

@@ -4,7 +4,8 @@
 # values of the asked pixels to OUT (JSON). JOBS (JSON):
 #   {"zip": path, "size": N, "ortho_scale": s, "samples": n,
 #    "renders": [{"table": .alloy-table.json, "property": "at_percent" | "wt_percent" |
-#                 "karat", "value": v, "png": path, "pixels": [[column, row], ...]}]}
+#                 "karat", "value": v, "mode": "TABLE" | "APPROXIMATE", "png": path,
+#                 "pixels": [[column, row], ...]}]}
 # Rows count from the bottom (Blender's pixel order).
 import json
 import sys
@@ -77,6 +78,7 @@ for job in jobs["renders"]:
         material = alloycolor_material.import_table(job["table"])
         materials[job["table"]] = material
     setattr(material.alloycolor, job["property"], job["value"])
+    material.alloycolor.mode = job["mode"]
     sphere.data.materials.clear()
     sphere.data.materials.append(material)
     render.filepath = job["png"]

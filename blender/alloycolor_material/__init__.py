@@ -409,7 +409,7 @@ class MATERIAL_PT_alloycolor(bpy.types.Panel):
         layout.row().prop(s, "unit", expand=True)
         prop = {"AT": "at_percent", "WT": "wt_percent", "KARAT": "karat"}[s.unit]
         layout.prop(s, prop, text="%s (%s)" % (s.element_a if s.unit != "KARAT" else "Au",
-                                               {"AT": "at%", "WT": "wt%", "KARAT": "k"}[s.unit]))
+                                               {"AT": "at%", "WT": "wt%", "KARAT": "karat"}[s.unit]))
         layout.row().prop(s, "mode", expand=True)
         layout.label(text="Table lookup: " + s.lookup_error)
 

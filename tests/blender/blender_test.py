@@ -4,6 +4,8 @@ material against the program's own colours (`alloycolor color --json`, srgb8).
 
     blender_test.py --program ALLOYCOLOR --zip alloycolor_material.zip [--blender BLENDER]
 
+BLENDER: default the blender on PATH, else /usr/bin/blender.
+
 Fits eps-linear models of the bundled Au-Ag and Cu-Zn data, exports their tables, renders
 (orthographic camera, sphere of radius 1, uniform white world of strength 1, Standard view
 transform, 8-bit sRGB PNG) and checks, each within 3 of 8 bits per channel:
@@ -41,7 +43,7 @@ def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--program", required=True)
     parser.add_argument("--zip", required=True)
-    parser.add_argument("--blender", default="/usr/bin/blender")
+    parser.add_argument("--blender", default=shutil.which("blender") or "/usr/bin/blender")
     o = parser.parse_args()
     if not os.path.exists(o.blender):
         print("Blender is absent (%s; Debian package blender): skipped" % o.blender)

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -54,12 +55,16 @@ void Run(const ExportOptions& o) {
   exports::CheckExportSceneDir(o.settings.scene_dir, "--scene-dir");
   const color::Colorimeter d65 = LoadColorimeter("D65", 2);
   exports::ExportMaterial material;
+  std::unique_ptr<const AlloyModel> model;  // outlives the material, which points to it
   if (o.material.measured()) {
     material = exports::MeasuredExportMaterial(d65, o.material.LoadMeasured(o.quiet));
   } else {
-    const auto model = o.material.LoadModel(o.quiet);
+    // A format over the whole range needs no --x (and ignores one).
+    const bool whole_range = exports::ExportFormatCoversRange(o.settings.format);
+    model = o.material.LoadModel(o.quiet, !whole_range);
     const ModelSource& source = o.material.source;
-    material = exports::AlloyExportMaterial(d65, *model, o.material.Compositions(*model, true)[0],
+    const double x = whole_range ? model->x_min() : o.material.Compositions(*model, true)[0];
+    material = exports::AlloyExportMaterial(d65, *model, x,
                                             source.model_path.empty()
                                                 ? "built from data " + source.data_dir
                                                 : "from " + source.model_path);
@@ -70,7 +75,14 @@ void Run(const ExportOptions& o) {
     for (const std::string& note : material.spectra.notes) Warn(note);
   }
   WriteOutputs(e.files, o.quiet);
-  if (!o.quiet && o.settings.format != "spd") {
+  if (!o.quiet && exports::ExportFormatCoversRange(o.settings.format)) {
+    const nlohmann::json& error = e.summary["lookup_error"];
+    std::cerr << "alloycolor: table " << e.summary["columns"] << " x " << e.summary["rows"]
+              << " (composition x mu); bilinear lookup against direct evaluation at "
+              << error["check_points"] << " points between texels: largest CIEDE2000 "
+              << error["max_delta_e00"].get<double>() << ", largest 8-bit sRGB difference "
+              << error["max_srgb8_difference"] << "\n";
+  } else if (!o.quiet && o.settings.format != "spd") {
     const exports::RendererMaterials& m = e.materials;
     const auto& c = m.rgb_conductor;
     std::cerr << "alloycolor: colours in " << exports::kColorSpaceNote << "\n";
@@ -101,17 +113,19 @@ void RegisterExport(CLI::App& app) {
       "rgb-conductor (PREFIX.rgb.xml for Mitsuba 3 RGB variants, PREFIX.blender.py for "
       "Blender's Metallic BSDF), f82 (PREFIX.f82.json: F0, F82 and the OpenPBR F82 tint), "
       "gulbrandsen (PREFIX.gulbrandsen.json: r, g for Standard Surface and artistic_ior), "
-      "materialx (PREFIX.mtlx, conductor_bsdf), gltf (PREFIX.gltf), all (every file). Each "
+      "materialx (PREFIX.mtlx, conductor_bsdf), gltf (PREFIX.gltf), all (every file above); "
+      "blender-table (an alloy's whole range, --x not needed: PREFIX.alloy-table.png and "
+      "PREFIX.alloy-table.json for the Blender add-on, docs/blender.md). Each "
       "approximation's largest CIEDE2000 difference from the spectral colour over 0-85 "
       "degrees is printed on stderr (and with --json on stdout).");
   o->material.AddOptions(cmd, "Composition of the system's first element: 0.75, 75at%, 75wt%, 18k");
   cmd->add_option("--format", o->settings.format,
-                  "spd, rgb-conductor, f82, gulbrandsen, materialx, gltf or all")
+                  "spd, rgb-conductor, f82, gulbrandsen, materialx, gltf, all or blender-table")
       ->capture_default_str();
   cmd->add_option("--out", o->out,
                   "Output prefix: PREFIX.eta.spd, PREFIX.k.spd, PREFIX.pbrt, PREFIX.xml (spd), "
                   "PREFIX.rgb.xml, PREFIX.blender.py, PREFIX.f82.json, PREFIX.gulbrandsen.json, "
-                  "PREFIX.mtlx, PREFIX.gltf")
+                  "PREFIX.mtlx, PREFIX.gltf, PREFIX.alloy-table.png and .json")
       ->required();
   cmd->add_option("--scene-dir", o->settings.scene_dir,
                   "spd: write the .spd names relative to this folder, where the scene file that "

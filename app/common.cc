@@ -360,13 +360,15 @@ NkSpectrum MaterialSource::LoadMeasured(bool quiet) const {
   return nk;
 }
 
-std::unique_ptr<AlloyModel> MaterialSource::LoadModel(bool quiet) const {
+std::unique_ptr<AlloyModel> MaterialSource::LoadModel(bool quiet, bool needs_x) const {
   if (!columns.empty()) throw Error("--columns applies to --nk FILE only");
   if (source.model_path.empty() && source.data_dir.empty()) {
     throw Error("give --nk FILE, or --model FILE (or --data DIR) with --x");
   }
-  if (x_text.empty()) throw Error("--x: give the composition(s), e.g. --x 0.75 or 18k");
-  CheckCompositionCount(SplitComma(x_text).size(), "--x");
+  if (needs_x && x_text.empty()) {
+    throw Error("--x: give the composition(s), e.g. --x 0.75 or 18k");
+  }
+  if (!x_text.empty()) CheckCompositionCount(SplitComma(x_text).size(), "--x");
   return source.Load(quiet);
 }
 

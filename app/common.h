@@ -105,7 +105,8 @@ struct MaterialSource {
   // --model, --data or --x are given too.
   NkSpectrum LoadMeasured(bool quiet) const;
   // The model of --model or --data; throws Error naming what is missing.
-  std::unique_ptr<AlloyModel> LoadModel(bool quiet) const;
+  // needs_x false: --x may be absent (a command over the model's whole range).
+  std::unique_ptr<AlloyModel> LoadModel(bool quiet, bool needs_x = true) const;
   // The --x compositions, each checked against the model's range; `single`: exactly one.
   std::vector<double> Compositions(const AlloyModel& model, bool single) const;
   // The --x compositions as the user wrote them ("18k"), trimmed, in the same order.

@@ -8,7 +8,9 @@ packages=(build-essential cmake ninja-build pkg-config libceres-dev libeigen3-de
           nlohmann-json3-dev libyaml-cpp-dev libpng-dev libgtest-dev libgmock-dev
           libbenchmark-dev libcli11-dev libxml2-utils
           pybind11-dev python3-pybind11 python3-dev python3-numpy python3-pytest
-          nodejs)  # nodejs: the explorer page's script tests (tests/js)
+          nodejs   # nodejs: the explorer page's script tests (tests/js)
+          blender) # blender: the add-on's render test (tests/blender); 174 packages, 766 MB,
+                   # about a minute to install on a fast mirror
 packages+=("$@")
 missing=()
 for p in "${packages[@]}"; do

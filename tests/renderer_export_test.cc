@@ -713,10 +713,12 @@ TEST(BuildExportTest, EachFormatBuildsItsFiles) {
       {"gltf", {".gltf"}}};
   std::vector<std::string> all;
   for (const std::string& format : exports::ExportFormats()) {
-    if (format == "all") continue;
+    if (format == "all" || exports::ExportFormatCoversRange(format)) continue;
     for (const std::string& suffix : suffixes.at(format)) all.push_back("p" + suffix);
   }
   for (const std::string& format : exports::ExportFormats()) {
+    // A table over an alloy's range (blender_table_test.cc) is refused for measured n, k.
+    if (exports::ExportFormatCoversRange(format)) continue;
     const exports::ExportFiles e = exports::BuildExport(d65, gold, "p", {format, "", 0.0});
     std::vector<std::string> paths;
     for (const OutputFile& f : e.files) paths.push_back(f.path);

@@ -7,6 +7,7 @@
 #include "alloycolor/core/composition.h"
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/json.h"
+#include "alloycolor/export/blender_table.h"
 #include "alloycolor/export/material_files.h"
 
 namespace alloycolor::exports {
@@ -80,9 +81,11 @@ nlohmann::json GulbrandsenDocument(const std::string& material, const nlohmann::
 
 const std::vector<std::string>& ExportFormats() {
   static const std::vector<std::string> formats = {
-      "spd", "rgb-conductor", "f82", "gulbrandsen", "materialx", "gltf", "all"};
+      "spd", "rgb-conductor", "f82", "gulbrandsen", "materialx", "gltf", "all", "blender-table"};
   return formats;
 }
+
+bool ExportFormatCoversRange(const std::string& format) { return format == "blender-table"; }
 
 std::string AlloyDescription(const AlloyModel& model, double x_atomic, const std::string& origin) {
   const AlloySystem& system = model.system();
@@ -96,7 +99,8 @@ ExportMaterial AlloyExportMaterial(const color::Colorimeter& d65, const AlloyMod
                                    double x_atomic, const std::string& origin) {
   return {ModelSpectra(model, x_atomic, AlloyDescription(model, x_atomic, origin)),
           color::IndexOnGrid(d65, model, x_atomic),
-          Identifier(model.system().Name() + "_x" + Format("%.6g", x_atomic))};
+          Identifier(model.system().Name() + "_x" + Format("%.6g", x_atomic)), &model,
+          model.system().Name() + ", " + model.method() + " model " + origin};
 }
 
 ExportMaterial MeasuredExportMaterial(const color::Colorimeter& d65, const NkSpectrum& nk) {
@@ -139,9 +143,26 @@ ExportFiles BuildExport(const color::Colorimeter& d65, const ExportMaterial& mat
     return settings.format == "all" || settings.format == format;
   };
   ExportFiles out;
+  if (settings.format == "blender-table") {
+    if (material.model == nullptr) {
+      throw Error("format blender-table: needs an alloy's model, not measured n, k (" + name + ")");
+    }
+    const BlenderTable table = BuildBlenderTable(d65, *material.model, {});
+    out.files = BlenderTableFiles(table, prefix, material.model_description, generator);
+    out.summary = {{"material", material.model_description},
+                   {"x_range", {table.x_min, table.x_max}},
+                   {"columns", table.columns},
+                   {"rows", table.rows},
+                   {"lookup_error",
+                    {{"max_delta_e00", table.max_de00},
+                     {"max_srgb8_difference", table.max_srgb8_difference},
+                     {"check_points", table.check_points}}}};
+  }
   if (wanted("spd")) AddSpectralFiles(material, prefix, settings.scene_dir, header, &out.files);
-  out.materials = FitRendererMaterials(d65, material.index, name);
-  out.summary = RendererMaterialsJson(out.materials, name);
+  if (settings.format != "blender-table") {
+    out.materials = FitRendererMaterials(d65, material.index, name);
+    out.summary = RendererMaterialsJson(out.materials, name);
+  }
   const RendererMaterials& m = out.materials;
   if (wanted("rgb-conductor")) {
     out.files.push_back(

@@ -436,7 +436,9 @@ class Model:
         """Writes exactly the files ``alloycolor export --x X --out PREFIX`` writes, as a set
         (all or none replaced): ``format`` "spd" (PREFIX.eta.spd, .k.spd, .pbrt, .xml),
         "rgb-conductor" (.rgb.xml, .blender.py), "f82" (.f82.json), "gulbrandsen"
-        (.gulbrandsen.json), "materialx" (.mtlx), "gltf" (.gltf) or "all"; ``scene_dir``:
+        (.gulbrandsen.json), "materialx" (.mtlx), "gltf" (.gltf), "all" or
+        "blender-table" (.alloy-table.png and .json over the model's whole range, ``x``
+        ignored: the Blender add-on's table, docs/blender.md); ``scene_dir``:
         name the .spd files relative to that folder (spd); ``roughness`` in [0, 1]
         (materialx, gltf). The files describe the model by where it came from
         (``load_model``'s path, ``fit``'s data set). Returns ``--json``'s document: every

@@ -89,6 +89,7 @@ struct PngJob {
   png_bytep* rows;
   png_textp text;
   int text_count;
+  bool srgb;  // the sRGB, gAMA and cHRM chunks (not for data such as a lookup table)
 };
 
 void WriteCallback(png_structp png, png_bytep data, png_size_t length) {
@@ -129,7 +130,7 @@ bool RunPngWriter(const PngJob& job, std::string* out, char* error) {
   png_set_write_fn(png, out, WriteCallback, nullptr);
   png_set_IHDR(png, info, job.width, job.height, job.bit_depth, PNG_COLOR_TYPE_RGB_ALPHA,
                PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-  png_set_sRGB_gAMA_and_cHRM(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
+  if (job.srgb) png_set_sRGB_gAMA_and_cHRM(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
   if (job.text_count > 0) png_set_text(png, info, job.text, job.text_count);
   png_write_info(png, info);
   png_write_image(png, job.rows);
@@ -140,7 +141,7 @@ bool RunPngWriter(const PngJob& job, std::string* out, char* error) {
 
 // bytes (only read): rows of width * 4 samples of bit_depth / 8 bytes each, big-endian.
 std::string EncodePng(int width, int height, int bit_depth, png_byte* bytes,
-                      const std::vector<PngText>& text) {
+                      const std::vector<PngText>& text, bool srgb = true) {
   const std::size_t row_bytes = static_cast<std::size_t>(width) * 4 * (bit_depth / 8);
   std::vector<png_bytep> rows(height);
   for (int y = 0; y < height; ++y) rows[y] = bytes + row_bytes * y;
@@ -165,7 +166,8 @@ std::string EncodePng(int width, int height, int bit_depth, png_byte* bytes,
                    bit_depth,
                    rows.data(),
                    chunks.data(),
-                   static_cast<int>(chunks.size())};
+                   static_cast<int>(chunks.size()),
+                   srgb};
   std::string out;
   out.reserve(row_bytes * height / 2);
   char error[256] = "";
@@ -215,14 +217,26 @@ std::string PngBytes(const ImageRGBA8& image, const std::vector<PngText>& text) 
   return EncodePng(image.width, image.height, 8, const_cast<png_byte*>(image.rgba.data()), text);
 }
 
-std::string PngBytes(const ImageRGBA16& image, const std::vector<PngText>& text) {
+namespace {
+
+std::string Png16Bytes(const ImageRGBA16& image, const std::vector<PngText>& text, bool srgb) {
   CheckImage(image.width, image.height, image.rgba.size());
   std::vector<png_byte> bytes(image.rgba.size() * 2);
   for (std::size_t i = 0; i < image.rgba.size(); ++i) {
     bytes[2 * i] = static_cast<png_byte>(image.rgba[i] >> 8);
     bytes[2 * i + 1] = static_cast<png_byte>(image.rgba[i] & 0xff);
   }
-  return EncodePng(image.width, image.height, 16, bytes.data(), text);
+  return EncodePng(image.width, image.height, 16, bytes.data(), text, srgb);
+}
+
+}  // namespace
+
+std::string PngBytes(const ImageRGBA16& image, const std::vector<PngText>& text) {
+  return Png16Bytes(image, text, true);
+}
+
+std::string DataPngBytes(const ImageRGBA16& image, const std::vector<PngText>& text) {
+  return Png16Bytes(image, text, false);
 }
 
 void WritePng(const std::string& path, const ImageRGBA8& image, const std::vector<PngText>& text) {

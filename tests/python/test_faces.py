@@ -80,6 +80,13 @@ def test_spectrum_export_writes_the_programs_files(binary, tmp_path, fmt):
                     tmp_path / "materials" / "au")
 
 
+def test_model_export_writes_the_programs_blender_table(binary, model_file, tmp_path):
+    model = ac.load_model(str(model_file))
+    compare_exports(binary, ["--model", model_file, "--format", "blender-table"],
+                    lambda prefix: model.export("18k", prefix, format="blender-table"),
+                    tmp_path / "gold")
+
+
 def test_fitted_model_export_names_its_data_as_the_program_does(binary, tmp_path):
     model = ac.fit("Au-Ag", "paper")
     files = compare_exports(binary, ["--data", "Au-Ag", "--method", "paper", "--x", "0.75",

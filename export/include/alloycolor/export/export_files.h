@@ -8,7 +8,10 @@
 //  - gulbrandsen: PREFIX.gulbrandsen.json: r and g with Standard Surface (metalness 1,
 //    base_color = r, specular_color = g) and MaterialX artistic_ior (reflectivity = r,
 //    edge_color = g);
-//  - materialx: PREFIX.mtlx; gltf: PREFIX.gltf; all: every file above, in that order.
+//  - materialx: PREFIX.mtlx; gltf: PREFIX.gltf; all: every file above, in that order;
+//  - blender-table: the alloy over its whole composition range, not at one composition
+//    (an alloy only, not in "all"): PREFIX.alloy-table.png and PREFIX.alloy-table.json,
+//    the Blender add-on's table (blender_table.h).
 // Nothing is written here: the face writes the files as a set (core/output.h).
 #ifndef ALLOYCOLOR_EXPORT_EXPORT_FILES_H_
 #define ALLOYCOLOR_EXPORT_EXPORT_FILES_H_
@@ -27,8 +30,10 @@
 
 namespace alloycolor::exports {
 
-// "spd", "rgb-conductor", "f82", "gulbrandsen", "materialx", "gltf", "all".
+// "spd", "rgb-conductor", "f82", "gulbrandsen", "materialx", "gltf", "all", "blender-table".
 const std::vector<std::string>& ExportFormats();
+// Whether a format describes the model over its whole range (the composition is ignored).
+bool ExportFormatCoversRange(const std::string& format);
 
 // What is exported: n and k for the spectral files, n + ik on the D65 colorimeter's grid
 // (the truth the RGB reductions are fitted to), and the identifier material files give it.
@@ -36,6 +41,10 @@ struct ExportMaterial {
   ConductorSpectra spectra;
   std::vector<std::complex<double>> index;
   std::string id;
+  // An alloy's model (not owned: it must outlive the material) and its description
+  // without the composition; null and empty for a measured metal.
+  const AlloyModel* model = nullptr;
+  std::string model_description;
 };
 
 // How export files describe an alloy at x_atomic: "Au-Ag at x = 0.75 (atomic fraction of
@@ -63,13 +72,15 @@ void CheckExportRoughness(double roughness, const std::string& name);
 
 struct ExportFiles {
   std::vector<OutputFile> files;  // in the order above
-  RendererMaterials materials;
-  // `alloycolor export --json`: RendererMaterialsJson with "format" and "files" (the paths).
+  RendererMaterials materials;    // empty for blender-table
+  // `alloycolor export --json`: RendererMaterialsJson with "format" and "files" (the paths);
+  // for blender-table the table's sizes and "lookup_error" instead of the materials.
   nlohmann::json summary;
 };
 
 // The files for `prefix` (a path without the suffixes). Throws Error for a bad setting
-// (named "format", "scene_dir" or "roughness") or a material the files cannot hold.
+// (named "format", "scene_dir" or "roughness") or a material the files cannot hold
+// (blender-table of a measured metal).
 ExportFiles BuildExport(const color::Colorimeter& d65, const ExportMaterial& material,
                         const std::string& prefix, const ExportSettings& settings);
 

@@ -56,6 +56,9 @@ struct PngText {
 // The PNG file's bytes. Throws Error for an empty image or a libpng failure.
 std::string PngBytes(const ImageRGBA8& image, const std::vector<PngText>& text = {});
 std::string PngBytes(const ImageRGBA16& image, const std::vector<PngText>& text = {});
+// A 16-bit PNG of data rather than an sRGB picture (linear values, a lookup table): the
+// samples as they are, without the sRGB, gAMA and cHRM chunks.
+std::string DataPngBytes(const ImageRGBA16& image, const std::vector<PngText>& text = {});
 
 // Writes the PNG file atomically; throws Error naming the path when it cannot.
 void WritePng(const std::string& path, const ImageRGBA8& image,

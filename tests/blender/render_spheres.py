@@ -1,0 +1,100 @@
+# Run inside Blender (blender --background --factory-startup --python THIS -- JOBS OUT):
+# installs the add-on from its zip, imports alloy tables as materials, renders a smooth
+# UV sphere of each under a uniform white world with Cycles and writes the 8-bit sRGB
+# values of the asked pixels to OUT (JSON). JOBS (JSON):
+#   {"zip": path, "size": N, "ortho_scale": s, "samples": n,
+#    "renders": [{"table": .alloy-table.json, "property": "at_percent" | "wt_percent" |
+#                 "karat", "value": v, "mode": "TABLE" | "APPROXIMATE", "png": path,
+#                 "pixels": [[column, row], ...]}]}
+# Rows count from the bottom (Blender's pixel order).
+import json
+import sys
+import time
+
+import bpy
+
+args = sys.argv[sys.argv.index("--") + 1:]
+with open(args[0]) as f:
+    jobs = json.load(f)
+
+bpy.ops.preferences.addon_install(filepath=jobs["zip"], overwrite=True)
+bpy.ops.preferences.addon_enable(module="alloycolor_material")
+import alloycolor_material  # noqa: E402  (installed just above)
+
+scene = bpy.context.scene
+for obj in list(scene.objects):
+    bpy.data.objects.remove(obj, do_unlink=True)
+
+bpy.ops.mesh.primitive_uv_sphere_add(segments=256, ring_count=128, radius=1.0)
+sphere = bpy.context.active_object
+bpy.ops.object.shade_smooth()
+sphere.rotation_euler = (1.5707963267948966, 0.0, 0.0)  # the poles off the view axis
+
+camera_data = bpy.data.cameras.new("camera")
+camera_data.type = "ORTHO"
+camera_data.ortho_scale = jobs["ortho_scale"]
+camera = bpy.data.objects.new("camera", camera_data)
+camera.location = (0.0, 0.0, 10.0)  # a camera looks down its -z axis: at the sphere
+scene.collection.objects.link(camera)
+scene.camera = camera
+
+world = bpy.data.worlds.new("white")
+world.use_nodes = True
+background = world.node_tree.nodes["Background"]
+background.inputs["Color"].default_value = (1.0, 1.0, 1.0, 1.0)
+background.inputs["Strength"].default_value = 1.0
+scene.world = world
+
+render = scene.render
+render.engine = "CYCLES"
+scene.cycles.device = "CPU"
+scene.cycles.samples = jobs["samples"]
+scene.cycles.use_adaptive_sampling = False
+scene.cycles.use_denoising = False
+scene.cycles.blur_glossy = 0.0
+scene.cycles.pixel_filter_type = "BOX"
+scene.cycles.filter_width = 0.01  # every sample at the pixel's centre
+render.threads_mode = "FIXED"
+render.threads = 2
+render.resolution_x = render.resolution_y = jobs["size"]
+render.resolution_percentage = 100
+render.film_transparent = False
+render.dither_intensity = 0.0
+render.image_settings.file_format = "PNG"
+render.image_settings.color_mode = "RGB"
+render.image_settings.color_depth = "8"
+scene.display_settings.display_device = "sRGB"
+scene.view_settings.view_transform = "Standard"
+scene.view_settings.look = "None"
+scene.view_settings.exposure = 0.0
+scene.view_settings.gamma = 1.0
+scene.sequencer_colorspace_settings.name = "sRGB"
+
+results = []
+materials = {}
+for job in jobs["renders"]:
+    material = materials.get(job["table"])
+    if material is None:
+        material = alloycolor_material.import_table(job["table"])
+        materials[job["table"]] = material
+    setattr(material.alloycolor, job["property"], job["value"])
+    material.alloycolor.mode = job["mode"]
+    sphere.data.materials.clear()
+    sphere.data.materials.append(material)
+    render.filepath = job["png"]
+    start = time.time()
+    bpy.ops.render.render(write_still=True)
+    seconds = time.time() - start
+    image = bpy.data.images.load(job["png"], check_existing=False)
+    width = image.size[0]
+    pixels = image.pixels[:]
+    values = []
+    for column, row in job["pixels"]:
+        i = (row * width + column) * 4
+        values.append([round(255 * pixels[i + c]) for c in range(3)])
+    bpy.data.images.remove(image)
+    results.append({"x_atomic": material.alloycolor.x_atomic, "pixels": values,
+                    "seconds": seconds})
+
+with open(args[1], "w") as f:
+    json.dump({"blender": bpy.app.version_string, "results": results}, f, indent=1)

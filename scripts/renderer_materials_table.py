@@ -108,6 +108,12 @@ the sRGB gamut): no RGB reflectance can reach it, and the RGB conductor stops at
 limit (for McPeak's gold and Rioux's Au100 that limit is about 1.05 and 1.11 at normal
 incidence, checked in tests/renderer_export_test.cc).
 
+The glTF file is checked in three.js r187 (tests/three, pinned by its npm lock file) by
+tests/three_gltf_test.cc: GLTFLoader in headless Chromium loads it with no warning, and a
+sphere with its material under a uniform white environment (no tone mapping, sRGB output)
+shows at its centre the 8-bit sRGB colour at normal incidence within 3 (found equal, linear
+within 1e-7, for 18k gold, 24k gold and a 70 wt% brass). The file uses no glTF extension.
+
 | sample | composition | F0 | F82 tint | r | g | RGB eta | RGB k | dE00 RGB conductor | dE00 F82-tint | dE00 Gulbrandsen | dE00 Schlick F0 |
 |---|---|---|---|---|---|---|---|---|---|---|---|
 """ + "\n".join(lines) + """

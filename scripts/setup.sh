@@ -8,13 +8,8 @@ packages=(build-essential cmake ninja-build pkg-config libceres-dev libeigen3-de
           nlohmann-json3-dev libyaml-cpp-dev libpng-dev libgtest-dev libgmock-dev
           libbenchmark-dev libcli11-dev libxml2-utils
           pybind11-dev python3-pybind11 python3-dev python3-numpy python3-pytest
-          nodejs   # nodejs: the explorer page's script tests (tests/js)
-          blender) # blender: the add-on's render test (tests/blender); 174 packages, 766 MB,
-                   # about a minute to install on a fast mirror
-packages+=("$@")
-# npm: installs three.js for tests/three. NodeSource's nodejs carries its own npm (and
-# conflicts with Debian's), so Debian's is installed only when there is none.
-command -v npm >/dev/null || packages+=(npm)
+          nodejs)  # nodejs: the explorer page's script tests (tests/js)
+packages+=("$@")  # what the caller needs besides (scripts/test.sh: the test tools)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -47,16 +42,6 @@ if ((${#missing[@]})); then
   }
   apt_waiting apt-get update -q
   apt_waiting apt-get install -y -q --no-install-recommends "${missing[@]}"
-fi
-
-# three.js for the glTF check (tests/three_gltf_test.cc) at the version tests/three's lock
-# file pins, when it is not there yet: the network is used here, never by the build or tests.
-three_pinned=$(node -p "require('./tests/three/package.json').dependencies.three")
-three_here=$(node -p "try { require('./tests/three/node_modules/three/package.json').version }
-                      catch (e) { 'none' }")
-if [[ "$three_here" != "$three_pinned" ]]; then
-  echo "setup: npm ci in tests/three (three $three_pinned)" >&2
-  (cd tests/three && npm ci --no-audit --no-fund --loglevel=error >/dev/null)
 fi
 
 # ALLOYCOLOR_TARGETS: what to build (default: everything, the tests and benchmarks too).

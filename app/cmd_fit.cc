@@ -91,8 +91,8 @@ void ReportChanges(const AlloyModel& old_model, const AlloyModel& model) {
   }
 }
 
-// What the fit chose and how well it fits, on stderr: auto's choice and the fit's summary
-// line; with `verbose`, auto's leave-one-out table and the model against its own samples.
+// What the fit chose and how well it fits, on stderr: auto's choice, the fit's summary line
+// and the model against its own samples; with `verbose`, auto's leave-one-out table too.
 void ReportFit(const AlloyModel& model, double seconds, bool verbose) {
   const FitSummary& stats = model.fit_summary();
   if (stats.selection.present()) {
@@ -125,7 +125,7 @@ void ReportFit(const AlloyModel& model, double seconds, bool verbose) {
                  model.method().c_str(), shape.c_str(), stats.final_cost, stats.iterations,
                  stats.converged ? "converged" : "NOT converged", stats.rms_relative_eps, seconds);
   }
-  if (!verbose || model.in_sample().empty()) return;
+  if (model.in_sample().empty()) return;
   std::fprintf(stderr, "alloycolor: %s against its own samples (normal incidence, D65, 2 deg):\n",
                model.method().c_str());
   for (const InSampleError& r : model.in_sample()) {
@@ -293,8 +293,7 @@ void RegisterFit(CLI::App& app) {
       ->check(CLI::Range(0, 1024));
   CLI::Option* quiet = cmd->add_flag("--quiet", o->quiet, "No progress or warnings on stderr");
   cmd->add_flag("--verbose", o->verbose,
-                "Also auto's leave-one-out table, the cross-validation of the smoothing and the "
-                "model against its own samples")
+                "Also auto's leave-one-out table and the cross-validation of the smoothing")
       ->excludes(quiet);
   cmd->callback([o]() { Run(*o); });
 }

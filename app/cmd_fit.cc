@@ -223,16 +223,9 @@ void RegisterFit(CLI::App& app) {
   CLI::App* cmd =
       app.add_subcommand("fit", "Fit a model to a data set and write it as a JSON model file");
   cmd->footer(
-      "Fit a model to all samples of a data set and write it as a versioned JSON model "
-      "file (docs/model-format.md). smooth: Ceres fit, at every wavelength, of eps1 and eps2 "
-      "(or ln|eps| and arg eps, where leave-one-out prefers them) "
-      "as monotone cubic (PCHIP) curves of composition through knots, a regression with "
-      "its smoothing chosen by leave-one-composition-out cross-validation (with fewer than "
-      "five compositions by the marginal likelihood, per wavelength; tau and m* "
-      "follow from eps). physical: Ceres fit of a Drude + interband model (eps_inf, wp, gamma, "
-      "Lorentz / critical-point / Rioux terms) whose parameters are polynomials in "
-      "composition, to all samples at once, with covariance. paper, eps-linear: the "
-      "baselines (they keep the samples' data).");
+      "Fits the model to all samples of the data set and writes it as a versioned JSON model "
+      "file (docs/model-format.md). The methods (docs/methods.md):\n" +
+      MethodsHelp());
   cmd->add_option("--data", o->data_dir,
                   "Data set: folder with dataset.json, a manifest, or a bundled set's name")
       ->required();
@@ -240,11 +233,9 @@ void RegisterFit(CLI::App& app) {
                   "Leave out the samples at these compositions (comma-separated; the manifest's "
                   "numbers or 75at%, 75wt%, 18k)");
   cmd->add_option("--method", o->method,
-                  "auto (default: every method scored by leave-one-composition-out on the "
-                  "data, the best chosen (with three compositions, whose one fold cannot "
-                  "compare the curves delivered, smooth) and the table kept in the model "
-                  "file); " +
-                      MethodsHelp())
+                  "auto (every method scored by leave-one-composition-out, the best kept, its "
+                  "table in the model file), or one of " +
+                      MethodNames() + " (below)")
       ->capture_default_str();
   cmd->add_option("--out", o->out, "Model file to write (written atomically)")->required();
   cmd->add_option("--refit", o->refit,

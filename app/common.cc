@@ -276,8 +276,7 @@ void FlushWarnings() {
 
 std::string MethodsHelp() {
   std::string text;
-  for (const MethodInfo& m : Methods())
-    text += (text.empty() ? "" : "; ") + m.name + ": " + m.summary;
+  for (const MethodInfo& m : Methods()) text += "  " + m.name + ": " + m.summary + "\n";
   return text;
 }
 

@@ -62,7 +62,7 @@ std::vector<double> ParseNumberList(const std::string& text, const std::string& 
 // Progress lines on stderr ("alloycolor: ..."), or none when quiet.
 ProgressCallback ProgressPrinter(bool quiet);
 
-// Every method with its summary, for --help.
+// Every method with its summary, a line each, for --help.
 std::string MethodsHelp();
 // The registered methods' names, comma-separated.
 std::string MethodNames();

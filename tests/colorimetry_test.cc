@@ -102,9 +102,13 @@ TEST(DeltaE00Test, LowerBoundNeverExceedsIt) {
   double ratio_sum = 0;
   constexpr int kPairs = 1000000;
   for (int i = 0; i < kPairs; ++i) {
-    const Lab a{l(rng), ab(rng), ab(rng)};
-    const Lab b = i % 2 ? Lab{l(rng), ab(rng), ab(rng)}
-                        : Lab{a.L + near(rng), a.a + near(rng), a.b + near(rng)};
+    // Thirds: any two colours; two within a few units; two near ones with b* >= 0 (where the
+    // bound drops the hue rotation), as metals are.
+    Lab a{l(rng), ab(rng), ab(rng)};
+    if (i % 3 == 2) a.b = std::abs(a.b);
+    const Lab b = i % 3 == 0 ? Lab{l(rng), ab(rng), ab(rng)}
+                             : Lab{a.L + near(rng), a.a + near(rng),
+                                   i % 3 == 2 ? std::abs(a.b + near(rng)) : a.b + near(rng)};
     const double de = DeltaE00(a, b), bound = DeltaE00LowerBound(a, b);
     ASSERT_LE(bound, de * (1 + 1e-12) + 1e-12)
         << a.L << "," << a.a << "," << a.b << " / " << b.L << "," << b.a << "," << b.b;

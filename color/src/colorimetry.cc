@@ -410,18 +410,43 @@ double DeltaE00(const Lab& lab1, const Lab& lab2) {
   return std::sqrt(dl * dl + dc * dc + dh * dh + r_t * dc * dh);
 }
 
-double DeltaE00LowerBound(const Lab& lab1, const Lab& lab2) {
-  const double c_ab_mean = 0.5 * (std::sqrt(lab1.a * lab1.a + lab1.b * lab1.b) +
-                                  std::sqrt(lab2.a * lab2.a + lab2.b * lab2.b));
+LabBox LabBox::Of(const Lab& lab) {
+  const double c = std::sqrt(lab.a * lab.a + lab.b * lab.b);
+  return {lab.L, lab.L, lab.a, lab.a, lab.b, lab.b, c, c};
+}
+
+void LabBox::Add(const Lab& lab) {
+  const LabBox p = Of(lab);
+  l_lo = std::min(l_lo, p.l_lo), l_hi = std::max(l_hi, p.l_hi);
+  a_lo = std::min(a_lo, p.a_lo), a_hi = std::max(a_hi, p.a_hi);
+  b_lo = std::min(b_lo, p.b_lo), b_hi = std::max(b_hi, p.b_hi);
+  c_lo = std::min(c_lo, p.c_lo), c_hi = std::max(c_hi, p.c_hi);
+}
+
+double DeltaE00LowerBound(const Lab& lab, const LabBox& box) {
+  const auto gap = [](double v, double lo, double hi) { return std::max({0.0, lo - v, v - hi}); };
+  const double c_ab_mean = 0.5 * (std::sqrt(lab.a * lab.a + lab.b * lab.b) + box.c_hi);
   const double c_max7 = Pow7(1.5 * c_ab_mean);
-  const double r_t_max = std::sqrt(3.0) * std::sqrt(c_max7 / (c_max7 + k25Pow7));  // sin60 2 sqrt
+  // The rotation: delta_theta <= 30 degrees; where both colours have b* >= 0 their hues h'
+  // lie in [0, 180] degrees, so the mean hue lies 95 degrees or more from 275 and
+  // delta_theta <= 30 exp(-(95/25)^2) degrees.
+  static const double kSinAny = std::sin(Radians(60.0));
+  static const double kSinUpper =
+      std::sin(Radians(60.0 * std::exp(-(95.0 / 25.0) * (95.0 / 25.0))));
+  const double sin_max = lab.b >= 0.0 && box.b_lo >= 0.0 ? kSinUpper : kSinAny;
+  const double r_t_max = sin_max * 2.0 * std::sqrt(c_max7 / (c_max7 + k25Pow7));
   const double s_c_max = 1.0 + 0.0675 * c_ab_mean;
-  const double l_mean = 0.5 * (lab1.L + lab2.L);
-  const double l50 = (l_mean - 50.0) * (l_mean - 50.0);
-  const double s_l = 1.0 + 0.015 * l50 / std::sqrt(20.0 + l50);
-  const double dl = (lab2.L - lab1.L) / s_l;
-  const double da = lab2.a - lab1.a, db = lab2.b - lab1.b;
+  // S_L grows with |mean L - 50|: largest at the box's end farther from 50.
+  const double l_far = std::max(std::abs(0.5 * (lab.L + box.l_lo) - 50.0),
+                                std::abs(0.5 * (lab.L + box.l_hi) - 50.0));
+  const double s_l = 1.0 + 0.015 * l_far * l_far / std::sqrt(20.0 + l_far * l_far);
+  const double dl = gap(lab.L, box.l_lo, box.l_hi) / s_l;
+  const double da = gap(lab.a, box.a_lo, box.a_hi), db = gap(lab.b, box.b_lo, box.b_hi);
   return std::sqrt(dl * dl + (1.0 - 0.5 * r_t_max) * (da * da + db * db) / (s_c_max * s_c_max));
+}
+
+double DeltaE00LowerBound(const Lab& lab1, const Lab& lab2) {
+  return DeltaE00LowerBound(lab1, LabBox::Of(lab2));
 }
 
 }  // namespace alloycolor::color

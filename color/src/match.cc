@@ -182,6 +182,14 @@ ColourMatcher::ColourMatcher(const Colorimeter& colorimeter, const AlloyModel& m
   for (int i = 0; i + 1 < n; ++i) {
     scan_slack_de00_ = std::max(scan_slack_de00_, 2 * DeltaE00(scan_lab_[i], scan_lab_[i + 1]));
   }
+  for (int i = 0; i < n; ++i) {
+    scan_box_.push_back(LabBox::Of(scan_lab_[i]));
+    if (i % kScanBlock == 0) {
+      block_box_.push_back(scan_box_.back());
+    } else {
+      block_box_.back().Add(scan_lab_[i]);
+    }
+  }
 }
 
 ColourMatcher::~ColourMatcher() = default;
@@ -223,24 +231,35 @@ std::vector<Match> ColourMatcher::Find(const Lab& target) const {
   }
   // DeltaE00 is needed only at scan points where it may come within the margin of the
   // best (and at their neighbours, which decide whether they are minima): a point whose
-  // lower bound exceeds the closest point's DeltaE00 + margin + the most the colour
-  // changes over its bracket of two scan intervals cannot hold a match. The result is that
-  // of the full scan.
+  // lower bound exceeds reach = an upper bound of the best + the margin + the most the
+  // colour changes over a bracket of two scan intervals cannot hold a match. The bounds are
+  // taken for blocks of points first, then for the points of the blocks within reach. The
+  // result is that of the full scan.
   const size_t n = scan_lab_.size();
-  std::vector<double> bound(n);
+  const auto block_of = [n](size_t b) {
+    return std::pair{b * kScanBlock, std::min(n, (b + 1) * kScanBlock)};
+  };
+  std::vector<double> block_bound(block_box_.size());
   size_t closest = 0;
-  for (size_t i = 0; i < n; ++i) {
-    bound[i] = DeltaE00LowerBound(target, scan_lab_[i]);
-    if (bound[i] < bound[closest]) closest = i;
+  for (size_t b = 0; b < block_box_.size(); ++b) {
+    block_bound[b] = DeltaE00LowerBound(target, block_box_[b]);
+    if (block_bound[b] < block_bound[closest]) closest = b;
   }
-  const double reach = DeltaE00(target, scan_lab_[closest]) + options_.margin + scan_slack_de00_;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (auto [i, end] = block_of(closest); i < end; ++i) {
+    nearest = std::min(nearest, DeltaE00(target, scan_lab_[i]));
+  }
+  const double reach = nearest + options_.margin + scan_slack_de00_;
   std::vector<double> d(n, std::numeric_limits<double>::infinity());
   std::vector<char> candidate(n, 0);
-  for (size_t i = 0; i < n; ++i) {
-    if (bound[i] > reach) continue;
-    candidate[i] = 1;
-    for (size_t j = i == 0 ? 0 : i - 1; j <= std::min(i + 1, n - 1); ++j) {
-      if (std::isinf(d[j])) d[j] = DeltaE00(target, scan_lab_[j]);
+  for (size_t b = 0; b < block_box_.size(); ++b) {
+    if (block_bound[b] > reach) continue;
+    for (auto [i, end] = block_of(b); i < end; ++i) {
+      if (DeltaE00LowerBound(target, scan_box_[i]) > reach) continue;
+      candidate[i] = 1;
+      for (size_t j = i == 0 ? 0 : i - 1; j <= std::min(i + 1, n - 1); ++j) {
+        if (std::isinf(d[j])) d[j] = DeltaE00(target, scan_lab_[j]);
+      }
     }
   }
   const auto exact = [&](double x) { return DeltaE00(target, LabAt(x)); };

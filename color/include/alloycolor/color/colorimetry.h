@@ -78,12 +78,22 @@ Lab LabFromXYZ(const XYZ& xyz, const XYZ& white);
 // CIEDE2000 with kL = kC = kH = 1.
 double DeltaE00(const Lab& lab1, const Lab& lab2);
 // A lower bound of DeltaE00 that costs a few square roots and no trigonometry, for scans
-// that need DeltaE00 only where it may be small. With the terms of CIEDE2000 (Sharma, Wu
-// & Dalal 2005): dL' = dL, and dC'^2 + dH'^2 = (1 + G)^2 da^2 + db^2 >= da^2 + db^2 (G >= 0);
-// S_H <= S_C, as T <= 1.93; C' <= 1.5 C_ab (G <= 1/2), so S_C <= 1 + 0.0675 mean(C_ab);
-// |R_T| <= sin(60 deg) R_C(1.5 mean(C_ab)) (R_C grows with C), and
-// c^2 + h^2 + R_T c h >= (1 - |R_T| / 2)(c^2 + h^2). Hence
-//   DeltaE00^2 >= (dL / S_L)^2 + (1 - |R_T|max / 2)(da^2 + db^2) / S_C,max^2.
+// that need DeltaE00 only where it may be small: of DeltaE00(lab, c) for every colour c in
+// a box (L*, a*, b* and chroma C_ab each within [lo, hi]), or for one colour. With the terms
+// of CIEDE2000 (Sharma, Wu & Dalal 2005): dL' = dL, and dC'^2 + dH'^2 = (1 + G)^2 da^2 + db^2
+// >= da^2 + db^2 (G >= 0); S_H <= S_C, as T <= 1.93; C' <= 1.5 C_ab (G <= 1/2), so
+// S_C <= 1 + 0.0675 mean(C_ab); |R_T| <= sin(60 deg) R_C(1.5 mean(C_ab)) (R_C grows with C),
+// and where both colours have b* >= 0 (hues in [0, 180] degrees, the mean hue at least 95
+// degrees from 275) sin(2 * 30 exp(-(95/25)^2) deg) R_C, about 6e-7 R_C;
+// and c^2 + h^2 + R_T c h >= (1 - |R_T| / 2)(c^2 + h^2). Hence
+//   DeltaE00^2 >= (dL / S_L)^2 + (1 - |R_T|max / 2)(da^2 + db^2) / S_C,max^2,
+// with dL, da, db the least over the box and S_L, |R_T| and S_C the largest.
+struct LabBox {
+  double l_lo, l_hi, a_lo, a_hi, b_lo, b_hi, c_lo, c_hi;
+  static LabBox Of(const Lab& lab);
+  void Add(const Lab& lab);  // grows the box to hold lab
+};
+double DeltaE00LowerBound(const Lab& lab, const LabBox& box);
 double DeltaE00LowerBound(const Lab& lab1, const Lab& lab2);
 
 }  // namespace alloycolor::color

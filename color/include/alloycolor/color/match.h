@@ -26,6 +26,7 @@
 #define ALLOYCOLOR_COLOR_MATCH_H_
 
 #include <limits>
+#include <cstddef>
 #include <memory>
 #include <string>
 #include <vector>
@@ -103,6 +104,10 @@ class ColourMatcher {
   // Twice the largest DeltaE00 between neighbouring scan points: how far the distance to a
   // target may fall inside a minimum's bracket below its value at the scan point.
   double scan_slack_de00_ = 0.0;
+  // The scan points as boxes, and blocks of kScanBlock of them, for DeltaE00LowerBound.
+  static constexpr std::size_t kScanBlock = 16;
+  std::vector<LabBox> scan_box_;
+  std::vector<LabBox> block_box_;
 };
 
 // One target, one call.

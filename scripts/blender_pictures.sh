@@ -1,9 +1,14 @@
 #!/usr/bin/env bash
 # docs/images/blender-rings.png: rings of 18k Au-Ag, Cu70Zn30 brass and copper with the Blender
 # add-on's material (table mode), rendered by Blender (Cycles, CPU) from tables the
-# program exports. Needs build/app/alloycolor and blender (Debian package blender).
+# program exports; docs/images/blender-panel.png: the add-on's panel, a screenshot of Blender
+# drawn on a virtual display (xvfb-run). Installs what it needs (Debian's blender and xvfb)
+# and builds the program (scripts/setup.sh) unless ALLOYCOLOR names a program to use.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+if [[ -z ${ALLOYCOLOR:-} ]]; then
+  ALLOYCOLOR_TARGETS=alloycolor scripts/setup.sh blender xvfb
+fi
 program=${ALLOYCOLOR:-build/app/alloycolor}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
@@ -19,10 +24,6 @@ blender --background --factory-startup --python-exit-code 1 \
   "$tmp/Cu-Zn.alloy-table.json" at_percent 100 >"$tmp/blender.log" 2>&1 ||
   { cat "$tmp/blender.log" >&2; exit 1; }
 echo "wrote docs/images/blender-rings.png ($(stat -c %s docs/images/blender-rings.png) bytes)"
-if ! command -v xvfb-run >/dev/null; then
-  echo "xvfb-run is absent (Debian package xvfb): docs/images/blender-panel.png not made" >&2
-  exit 0
-fi
 # A user configuration of its own: no splash screen, nothing saved to the user's, the
 # session Blender saves on quitting kept in $tmp.
 mkdir -p "$tmp/config" "$tmp/scripts"

@@ -8,7 +8,9 @@
 // read from a ColorSweep table, sweep.h), every local minimum of the scan (ends included)
 // is refined by Brent's method (on d^2, smooth where d has a corner) on the exact model
 // (ColorSweep::ExactXYZ) inside its two neighbouring scan intervals, and the minima within `margin`
-// of the best are returned, best first.
+// of the best are returned, best first. The scan computes CIEDE2000 only where a lower bound
+// (DeltaE00LowerBound, colorimetry.h) leaves a point within reach of the best; its result is
+// the full scan's.
 //
 // Error bar. The colour speed v(x) = |dLab/dx| in CIEDE2000 units per unit of x is
 //   v(x) = DeltaE00(Lab(x - h), Lab(x + h)) / 2h,  h = 1e-5
@@ -25,8 +27,8 @@
 #ifndef ALLOYCOLOR_COLOR_MATCH_H_
 #define ALLOYCOLOR_COLOR_MATCH_H_
 
-#include <limits>
 #include <cstddef>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>

@@ -35,6 +35,18 @@ struct CornerHit {
   double t;
 };
 
+// Whether pixel i, whose centre ray gave `centre`, straddles an edge: a corner of it (rows
+// top and bottom of the corner grid) hits where the centre misses or the reverse, or lies
+// more than kDepthJump deeper or shallower.
+bool StraddlesEdge(const CornerHit* top, const CornerHit* bottom, int i, const Hit& centre) {
+  for (const CornerHit* corner : {&top[i], &top[i + 1], &bottom[i], &bottom[i + 1]}) {
+    if (corner->hit != centre.hit || (centre.hit && std::abs(corner->t - centre.t) > kDepthJump)) {
+      return true;
+    }
+  }
+  return false;
+}
+
 // Linear sRGB from XYZ (LinearSRGBFromXYZ, a linear map) as a matrix, for the inner loop.
 struct SRGBMatrix {
   double m[3][3];
@@ -314,13 +326,7 @@ NormalMap TraceNormals(Shape shape, int size) {
     for (int i = 0; i < size; ++i) {
       const std::size_t p = static_cast<std::size_t>(j) * size + i;
       const Hit& centre = centres[i];
-      bool edge = false;
-      for (const CornerHit* corner : {&top[i], &top[i + 1], &bottom[i], &bottom[i + 1]}) {
-        if (corner->hit != centre.hit ||
-            (centre.hit && std::abs(corner->t - centre.t) > kDepthJump)) {
-          edge = true;
-        }
-      }
+      const bool edge = StraddlesEdge(top, bottom, i, centre);
       Vec3 normal = centre.normal;
       double coverage = centre.hit ? 1.0 : 0.0;
       if (edge) {
@@ -423,13 +429,7 @@ std::unique_ptr<internal::TilePlan> TraceTile(const RenderOptions& options,
       for (int i = 0; i < size; ++i) {
         PixelTerm& pixel = plan->pixels[static_cast<std::size_t>(j) * size + i];
         const Hit& centre = centres[i];
-        bool edge = false;
-        for (const CornerHit* corner : {&top[i], &top[i + 1], &bottom[i], &bottom[i + 1]}) {
-          if (corner->hit != centre.hit ||
-              (centre.hit && std::abs(corner->t - centre.t) > kDepthJump)) {
-            edge = true;
-          }
-        }
+        const bool edge = StraddlesEdge(top, bottom, i, centre);
         if (!edge) {
           if (centre.hit) {
             pixel = {static_cast<float>(cosine(centre)), static_cast<float>(light(centre))};

@@ -442,9 +442,20 @@ TEST(Cli, PredictWritesTheModelsIndex) {
                         "--quiet"})
                 .status,
             0);
-  const RunResult r = RunProgram({"predict", "--model", dir + "/paper.json", "--x", "0.5", "--from",
-                                  "400", "--to", "410", "--step", "10"});
+  const RunResult r =
+      RunProgram({"predict", "--model", dir + "/paper.json", "--x", "0.5", "--lambda-from", "400",
+                  "--lambda-to", "410", "--lambda-step", "10"});
   ASSERT_EQ(r.status, 0) << r.err;
+  // The old names (until 0.3): the same rows, and a note naming the new ones; not both.
+  const RunResult old = RunProgram({"predict", "--model", dir + "/paper.json", "--x", "0.5",
+                                    "--from", "400", "--to", "410", "--step", "10"});
+  ASSERT_EQ(old.status, 0) << old.err;
+  EXPECT_EQ(old.out, r.out);
+  EXPECT_NE(old.err.find("--from is now --lambda-from"), std::string::npos) << old.err;
+  EXPECT_NE(old.err.find("--step is now --lambda-step"), std::string::npos) << old.err;
+  ExpectCleanError({"predict", "--model", dir + "/paper.json", "--x", "0.5", "--from", "400",
+                    "--lambda-from", "400"},
+                   {"--from is --lambda-from's old name"});
   // The paper model at a known sample is the sample: Rioux-Au50Ag50.yml rows 0.400, 0.410.
   ASSERT_EQ(CountLines(r.out), 3);
   double lambda = 0, n = 0, k = 0;

@@ -235,7 +235,7 @@ void RegisterFit(CLI::App& app) {
   cmd->add_option("--method", o->method,
                   "auto (every method scored by leave-one-composition-out, the best kept, its "
                   "table in the model file), or one of " +
-                      MethodNames() + " (below)")
+                      MethodNamesText() + " (below)")
       ->capture_default_str();
   cmd->add_option("--out", o->out, "Model file to write (written atomically)")->required();
   cmd->add_option("--refit", o->refit,

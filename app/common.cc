@@ -280,12 +280,6 @@ std::string MethodsHelp() {
   return text;
 }
 
-std::string MethodNames() {
-  std::string text;
-  for (const MethodInfo& m : Methods()) text += (text.empty() ? "" : ", ") + m.name;
-  return text;
-}
-
 void ModelSource::AddOptions(CLI::App* cmd, bool with_data, bool with_extrapolate) {
   cmd->add_option("--model", model_path, "Fitted model file (JSON, from 'alloycolor fit')");
   if (with_data) {
@@ -294,7 +288,7 @@ void ModelSource::AddOptions(CLI::App* cmd, bool with_data, bool with_extrapolat
                     "(Au-Ag, Cu-Zn, Nb-Sn)");
     cmd->add_option("--method", method,
                     "Model built from --data: auto (chosen by leave-one-out), or one of " +
-                        MethodNames() + " ('alloycolor fit --help', docs/methods.md)")
+                        MethodNamesText() + " ('alloycolor fit --help', docs/methods.md)")
         ->capture_default_str();
   }
   if (with_extrapolate) {

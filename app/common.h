@@ -64,8 +64,6 @@ ProgressCallback ProgressPrinter(bool quiet);
 
 // Every method with its summary, a line each, for --help.
 std::string MethodsHelp();
-// The registered methods' names, comma-separated.
-std::string MethodNames();
 
 // Writes a file atomically (output.h, with the program's guard: never over an input or a
 // special file, its temporary removed on a signal) and says so

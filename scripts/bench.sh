@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Benchmarks, each figure beside the straightforward implementation measured in the same
 # run: colours per second through each model (bench/colour_bench.cc), matches per second
-# (bench/match_bench.cc), rendering 1024 x 1024
+# (bench/match_bench.cc) and 100,000 targets matched from Python, rendering 1024 x 1024
 # tiles (bench/render_bench.cc), the end-to-end `alloycolor sweep` of a million
 # compositions, smooth-fit time against data size (bench/fit_bench.cc), and the wall time of
 # `alloycolor validate --loo --methods all` on every bundled data set. Builds build/
@@ -127,6 +127,25 @@ awk -F, '
              1000 / rate[order[i]], rate[order[i]] / base
     }
   }' "$out/match.csv"
+
+echo "== from colour to composition from Python: 100,000 targets in one model.match(labs, sigma=False) (all cores; best of 3)"
+PYTHONPATH="$BUILD_DIR/python" /usr/bin/python3 - <<'PY'
+import time
+import numpy as np
+import alloycolor as ac
+
+# Targets: the model's colour at random compositions, moved by N(0, 0.5) in L*, a*, b*.
+for name, method in (("Au-Ag", "smooth"), ("Cu-Zn/dataset-werner-zn.json", "eps-linear")):
+    model = ac.Dataset(name).fit(method)
+    rng = np.random.default_rng(1)
+    lab = model.color(rng.uniform(0, 1, 100000))["lab"] + rng.normal(0, 0.5, (100000, 3))
+    best = 1e300
+    for _ in range(3):
+        start = time.perf_counter()
+        model.match(lab, sigma=False)
+        best = min(best, time.perf_counter() - start)
+    print("  %-30s %-10s %.2f s (%.1f us per target)" % (name, method, best, best * 10))
+PY
 
 echo "== rendering a 1024 x 1024 tile of gold (D65, transparent background): Mpixel/s of wall time"
 render_filter='BM_(Table|First|Reference|Direct)/'

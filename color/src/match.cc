@@ -136,6 +136,14 @@ std::vector<Match> Minimise(const std::vector<double>& scan_x, const std::vector
   return kept;
 }
 
+// `points` evenly spaced compositions over [lo, hi] (one where the range is a point).
+std::vector<double> UniformScan(double lo, double hi, int points) {
+  const int n = hi > lo ? points : 1;
+  std::vector<double> x(n);
+  for (int i = 0; i < n; ++i) x[i] = i + 1 == n ? hi : lo + (hi - lo) * i / (n - 1);
+  return x;
+}
+
 void CheckAngle(double angle_deg) {
   if (!(angle_deg >= 0.0 && angle_deg <= 90.0)) {
     throw Error("angle of incidence " + FormatNumber(angle_deg) + " degrees lies outside 0-90");
@@ -172,17 +180,27 @@ ColourMatcher::ColourMatcher(const Colorimeter& colorimeter, const AlloyModel& m
   sweep_ = std::make_unique<ColorSweep>(colorimeter, model, options.angle_deg);
   const double lo = model.x_min(), hi = model.x_max();
   if (hi > lo) sweep_->BuildTable(lo, hi);  // else (or failing) exact evaluation
-  const int n = hi > lo ? options.scan_points : 1;
-  scan_x_.resize(n);
-  scan_lab_.resize(n);
-  for (int i = 0; i < n; ++i) {
-    scan_x_[i] = i + 1 == n ? hi : lo + (hi - lo) * i / (n - 1);
-    scan_lab_[i] = LabFromXYZ(sweep_->XYZAt(scan_x_[i]), colorimeter.White());
+  const std::vector<double> uniform = UniformScan(lo, hi, options.scan_points);
+  // The colour scan: the first and last of the uniform scan and each point where the colour
+  // has moved kColourScanStep along its path since the last one kept, or kColourScanGap in x.
+  double path = 0;
+  Lab previous_lab{};
+  for (size_t i = 0; i < uniform.size(); ++i) {
+    const Lab lab = LabFromXYZ(sweep_->XYZAt(uniform[i]), colorimeter.White());
+    if (i > 0) path += DeltaE00(previous_lab, lab);
+    previous_lab = lab;
+    if (i == 0 || i + 1 == uniform.size() || path >= kColourScanStep ||
+        uniform[i] - scan_x_.back() >= kColourScanGap * (hi - lo)) {
+      scan_x_.push_back(uniform[i]);
+      scan_lab_.push_back(lab);
+      path = 0;
+    }
   }
-  for (int i = 0; i + 1 < n; ++i) {
+  const size_t n = scan_x_.size();
+  for (size_t i = 0; i + 1 < n; ++i) {
     scan_slack_de00_ = std::max(scan_slack_de00_, 2 * DeltaE00(scan_lab_[i], scan_lab_[i + 1]));
   }
-  for (int i = 0; i < n; ++i) {
+  for (size_t i = 0; i < n; ++i) {
     scan_box_.push_back(LabBox::Of(scan_lab_[i]));
     if (i % kScanBlock == 0) {
       block_box_.push_back(scan_box_.back());
@@ -298,10 +316,12 @@ std::vector<Match> ColourMatcher::FindReflectance(const std::vector<double>& lam
     for (size_t i = 0; i < r.size(); ++i) sum2 += (r[i] - target[i]) * (r[i] - target[i]);
     return std::sqrt(sum2 / r.size());
   };
-  std::vector<double> d(scan_x_.size());
-  for (size_t i = 0; i < d.size(); ++i) d[i] = rms(scan_x_[i]);
+  const std::vector<double> scan =
+      UniformScan(model_.x_min(), model_.x_max(), options_.scan_points);
+  std::vector<double> d(scan.size());
+  for (size_t i = 0; i < d.size(); ++i) d[i] = rms(scan[i]);
   // The margin is a colour difference; for spectra the same number of reflectance percent.
-  std::vector<Match> matches = Minimise(scan_x_, d, rms, options_.margin / 100.0, source);
+  std::vector<Match> matches = Minimise(scan, d, rms, options_.margin / 100.0, source);
   // The target's own colour, where it covers what the colorimeter needs.
   bool coloured = false;
   Lab target_lab{};

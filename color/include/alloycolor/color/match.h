@@ -4,8 +4,10 @@
 //
 // Matching. Colour need not be monotone in composition, so the target's difference
 //   d(x) = DeltaE00(target, Lab(x))   (or, for a spectrum, RMS_lambda [R(x) - R_target])
-// is scanned at `scan_points` evenly spaced compositions over the model's range (colour
-// read from a ColorSweep table, sweep.h), every local minimum of the scan (ends included)
+// is scanned over the model's range (colour read from a ColorSweep table, sweep.h): of
+// `scan_points` evenly spaced compositions, the ends and each one where the colour has moved
+// kColourScanStep CIEDE2000 along its path since the last kept (or kColourScanGap of the
+// range; a spectrum's scan keeps them all). Every local minimum of the scan (ends included)
 // is refined by Brent's method (on d^2, smooth where d has a corner) on the exact model
 // (ColorSweep::ExactXYZ) inside its two neighbouring scan intervals, and the minima within `margin`
 // of the best are returned, best first. The scan computes CIEDE2000 only where a lower bound
@@ -42,6 +44,10 @@ namespace alloycolor::color {
 // A target farther than this from every composition is "not reachable".
 inline constexpr double kReachableDeltaE00 = 1.0;
 inline constexpr int kMatchScanPoints = 1001;
+// The colour scan's spacing: finer than colours can be told apart, and at most 1/100 of
+// the range.
+inline constexpr double kColourScanStep = 0.1;
+inline constexpr double kColourScanGap = 0.01;
 // The step of the colour-speed difference and of the tolerance walk, in atomic fraction.
 inline constexpr double kColourSpeedStep = 1e-5;
 inline constexpr double kToleranceStep = 5e-4;

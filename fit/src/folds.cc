@@ -24,7 +24,14 @@ std::vector<double> ErrorFolds(const Dataset& dataset) {
 
 std::vector<Fold> FitFolds(const MethodInfo& method, const Dataset& dataset,
                            const FitSettings& settings, const AlloyModel& model) {
-  const std::vector<double> xs = ErrorFolds(dataset);
+  std::vector<std::vector<double>> held;
+  for (double x : ErrorFolds(dataset)) held.push_back({x});
+  return FitFolds(method, dataset, settings, model, held);
+}
+
+std::vector<Fold> FitFolds(const MethodInfo& method, const Dataset& dataset,
+                           const FitSettings& settings, const AlloyModel& model,
+                           const std::vector<std::vector<double>>& held) {
   FitSettings inner = settings;
   inner.calibrate = false;
   inner.fold = true;
@@ -32,13 +39,13 @@ std::vector<Fold> FitFolds(const MethodInfo& method, const Dataset& dataset,
   inner.details = {};
   inner.parent = &model;
   inner.start = method.traits.warm_start_folds ? &model : nullptr;
-  std::vector<Fold> folds(xs.size());
+  std::vector<Fold> folds(held.size());
   ParallelTasks(
-      xs.size(),
+      held.size(),
       [&](size_t k) {
         Fold& f = folds[k];
-        f.x = xs[k];
-        const Dataset training = WithoutSamples(dataset, {f.x});
+        f.x = held[k].front();
+        const Dataset training = WithoutSamples(dataset, held[k]);
         try {
           f.model = BuildWithFolds(method, training, inner, nullptr);
         } catch (const Error& e) {
@@ -46,7 +53,9 @@ std::vector<Fold> FitFolds(const MethodInfo& method, const Dataset& dataset,
           return;
         }
         for (const Sample& s : dataset.samples) {
-          if (s.x_atomic == f.x) f.held.push_back(&s);
+          if (std::find(held[k].begin(), held[k].end(), s.x_atomic) != held[k].end()) {
+            f.held.push_back(&s);
+          }
         }
         f.compositions = DistinctCompositions(training);
       },

@@ -63,6 +63,10 @@ struct Fold {
 // built on all samples (the folds' parent: a method with warm-started folds starts there).
 std::vector<Fold> FitFolds(const MethodInfo& method, const Dataset& dataset,
                            const FitSettings& settings, const AlloyModel& model);
+// The same for other sets of compositions held out together (x: the first of each).
+std::vector<Fold> FitFolds(const MethodInfo& method, const Dataset& dataset,
+                           const FitSettings& settings, const AlloyModel& model,
+                           const std::vector<std::vector<double>>& held);
 
 // The folds' held-out samples scored as `validate` scores them (color/sample_error.h):
 // CIEDE2000 at normal incidence, or the reflectance RMS for data without colour; the mean

@@ -101,7 +101,9 @@ void AttachBuiltInBuilders();
 // Builds `method` on the data set and, with settings.calibrate and three compositions or
 // more, estimates its prediction error: each interior composition (20 at most, spread by
 // rank) is held out in turn, the method built on the rest predicts it, and the relative
-// eps errors give scale[j] = RMS over folds of error / B (PredictionError); the
+// eps errors give scale[j] = RMS over folds of error / B (PredictionError), B's gap
+// exponent measured by holding out each of those compositions again together with its
+// neighbour (four compositions or more; docs/model-format.md); the
 // calibration (SigmaCalibration) then scales the one-sigma colour uncertainty to the
 // folds' held-out CIEDE2000 errors, each fold's sigma from the other folds' scale
 // (colorimeter and visible data needed; 1 otherwise). Throws Error for an unknown method

@@ -72,14 +72,14 @@ struct FitSummary {
 // the relative eps error at composition x is scale[j] * B(x), with
 //   B(x) = 4 t (1 - t) (h / reference_gap)^gap_exponent   (times end_factor in an end
 // interval), t the position of x in its interval of width h between neighbouring training
-// compositions (B = 0 at each of them; beyond the ends |t(1 - t)|, growing). The fit sets
-// the exponent (fit/methods.cc, GapExponent): 2 for a linear interpolation, whose error on
-// a smooth curve grows as h^2, and on three compositions (the one fold is then a line); 1
-// for the others, between the h^3 or more of a cubic on a smooth curve and the h^0 of
-// sample-to-sample scatter in real measurements (on Cu-Zn, when B was one shape for all
-// methods, the square overstated the wide gap's error 5x and understated the narrow ones'
-// 3x). The calibration factor scales it so that held-out colour errors, in the folds, have
-// the spread the one-sigma colour uncertainty claims. Draws of eps add
+// compositions (B = 0 at each of them; beyond the ends |t(1 - t)|, growing). The fit
+// measures the exponent on the data (fit/src/prediction_error.cc, MeasuredGapExponent:
+// pairs of neighbouring compositions held out together against each held out alone): about
+// 2 for a linear interpolation of a smooth curve, more for a cubic, under 1 where the
+// samples scatter (the scatter does not shrink with the gap); on three compositions, where
+// no pair can be held out, 2 (the one fold is then a line). The calibration factor scales
+// it so that held-out colour errors, in the folds, have the spread the one-sigma colour
+// uncertainty claims. Draws of eps add
 //   calibration * scale * B * |eps| (z1 + i z2) / sqrt(2),
 // z1, z2 standard normal and the same at every wavelength of a draw (the error of an
 // interpolation across composition is smooth in wavelength).

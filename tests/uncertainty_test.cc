@@ -3,6 +3,8 @@
 // draws, against the closed form), and which fits carry it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <complex>
 #include <functional>
@@ -215,7 +217,9 @@ TEST(PredictionError, LinearInterpolationErrorGrowsAsTheGapSquared) {
 // gap ratio 1.5; 0.4 and 0.6 together, between -d and -d, miss 0.4 by 2 d at t = 1/4
 // (over 3/4: 8 d / 3, ratio 4/3 against 2 d, gap ratio 2) and 0.6 not at all (no ratio).
 // Slope 2 ln(3/4) ln 1.5 + ln(4/3) ln 2 over 2 ln^2 1.5 + ln^2 2 < 0, kept at 0: the
-// error does not shrink with the gap.
+// error does not shrink with the gap. Both together, x^2 / 20 + d with d = 0.005 (+, -, -,
+// +, +): the slope from the lines through the neighbours, written out here (1.11), lies
+// inside 0..2 and is what the fit measures.
 TEST(PredictionError, GapExponentMeasuredByHand) {
   const color::Colorimeter cm = color::Colorimeter::Load(DataDir(), "D65", 2);
   fit::FitSettings settings;
@@ -229,11 +233,34 @@ TEST(PredictionError, GapExponentMeasuredByHand) {
         .gap_exponent;
   };
   EXPECT_NEAR(exponent([](double x) { return x * x; }), 2.0, 1e-6);
-  EXPECT_EQ(exponent([&](double x) {
-              const int i = static_cast<int>(std::lround(x * 5));
-              return x / 4 + (i % 2 == 0 && i < 5 ? 0.01 : -0.01);
-            }),
-            0.0);
+  const auto scatter = [](double x, double d) {
+    const int i = static_cast<int>(std::lround(x * 5));
+    return i % 2 == 0 && i < 5 ? d : -d;
+  };
+  EXPECT_EQ(exponent([&](double x) { return x / 4 + scatter(x, 0.01); }), 0.0);
+  const double mixed_sign[] = {1, -1, -1, 1, 1};
+  const auto g = [&](int i) { return xs[i] * xs[i] / 20 + 0.005 * mixed_sign[i]; };
+  // The miss at xs[i] of the line through xs[a] and xs[b], over 4 t (1 - t).
+  const auto miss = [&](int a, int i, int b) {
+    const double t = (xs[i] - xs[a]) / (xs[b] - xs[a]);
+    return std::abs(g(a) + (g(b) - g(a)) * t - g(i)) / (4 * t * (1 - t));
+  };
+  double num = 0, den = 0;
+  // (sample, alone between, together between): 0.2 and 0.4 held out together, then 0.4
+  // and 0.6.
+  for (const auto& [i, a1, b1, a2, b2] : std::vector<std::array<int, 5>>{
+           {1, 0, 2, 0, 3}, {2, 1, 3, 0, 3}, {2, 1, 3, 1, 4}, {3, 2, 4, 1, 4}}) {
+    const double lg = std::log((xs[b2] - xs[a2]) / (xs[b1] - xs[a1]));
+    num += std::log(miss(a2, i, b2) / miss(a1, i, b1)) * lg;
+    den += lg * lg;
+  }
+  const double expected = num / den;
+  ASSERT_GT(expected, 0.2);
+  ASSERT_LT(expected, 1.8);
+  EXPECT_NEAR(exponent([&](double x) {
+                return g(static_cast<int>(std::find(xs.begin(), xs.end(), x) - xs.begin()));
+              }),
+              expected, 1e-6);
 }
 
 // The calibration is cross-fitted: each fold's sigma comes from the other folds' scale.

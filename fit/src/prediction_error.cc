@@ -189,9 +189,12 @@ std::pair<double, double> ShapedError(const Fold& f, double x, const std::vector
 // single fold's composition held out again together with the next composition (when that
 // is interior too), and the error at each of the two against the same composition's single
 // fold: the least-squares slope through 0 of log(error ratio) on log(gap ratio), errors
-// over B's shape 4 t (1 - t), kept in 0..4. Real series with scatter give well under 1 (the
-// scatter does not shrink with the gap), smooth curves 2 or more. The method's own
-// (GapExponent) where no pair can be held out (three compositions).
+// over B's shape 4 t (1 - t), kept in 0..GapExponent. The data can only lower the method's
+// exponent: scatter between samples does not shrink with the gap, so real series give well
+// under 1, and as the delivered model's gaps are smaller than the folds' the law there is
+// flatter still, never steeper, than the slope measured between the folds' gaps (on smooth
+// curves with added scatter, an uncapped slope of 2 or more made the bars too narrow). The
+// method's own where no pair can be held out (three compositions).
 double MeasuredGapExponent(const MethodInfo& method, const std::vector<Fold>& singles,
                            const Dataset& dataset, const FitSettings& settings,
                            const AlloyModel& model, const std::vector<double>& grid) {
@@ -217,8 +220,9 @@ double MeasuredGapExponent(const MethodInfo& method, const std::vector<Fold>& si
       den += lg * lg;
     }
   }
-  if (!(den > 0)) return GapExponent(method, dataset);
-  return std::clamp(num / den, 0.0, 4.0);
+  const double fallback = GapExponent(method, dataset);
+  if (!(den > 0)) return fallback;
+  return std::clamp(num / den, 0.0, fallback);
 }
 
 // The interpolation error's scale from the folds (nothing where no fold could be used),

@@ -74,10 +74,11 @@ struct FitSummary {
 // interval), t the position of x in its interval of width h between neighbouring training
 // compositions (B = 0 at each of them; beyond the ends |t(1 - t)|, growing). The fit
 // measures the exponent on the data (fit/src/prediction_error.cc, MeasuredGapExponent:
-// pairs of neighbouring compositions held out together against each held out alone): about
-// 2 for a linear interpolation of a smooth curve, more for a cubic, under 1 where the
-// samples scatter (the scatter does not shrink with the gap); on three compositions, where
-// no pair can be held out, 2 (the one fold is then a line). The calibration factor scales
+// pairs of neighbouring compositions held out together against each held out alone), at
+// most the method's own (registry.h: 2 for a linear interpolation, whose error on a smooth
+// curve grows as h^2, 1 for the others); under 1 where the samples scatter (the scatter
+// does not shrink with the gap); on three compositions, where no pair can be held out, 2
+// (the one fold is then a line). The calibration factor scales
 // it so that held-out colour errors, in the folds, have the spread the one-sigma colour
 // uncertainty claims. Draws of eps add
 //   calibration * scale * B * |eps| (z1 + i z2) / sqrt(2),

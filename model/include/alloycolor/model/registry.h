@@ -35,10 +35,10 @@ struct MethodTraits {
   // scatter favour it; then the interpolations, simplest first). Negative: not a candidate.
   int auto_rank = -1;
   // The power of the gap between neighbouring training compositions in its error bars'
-  // shape B (model/alloy_model.h, PredictionError) where the data cannot measure it (the
-  // fit measures it wherever two neighbouring compositions can be held out together): 2
-  // for a method that interpolates linearly (its error on a smooth curve grows as h^2), 1
-  // for the others.
+  // shape B (model/alloy_model.h, PredictionError), and its most where the fit measures
+  // it (wherever two neighbouring compositions can be held out together): 2 for a method
+  // that interpolates linearly (its error on a smooth curve grows as h^2), 1 for the
+  // others.
   double gap_exponent = 1;
   // `validate` (and Python's validate) runs it when no method is named.
   bool validate_default = true;

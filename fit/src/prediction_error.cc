@@ -185,16 +185,16 @@ std::pair<double, double> ShapedError(const Fold& f, double x, const std::vector
   return {std::sqrt(sum_sq / count) / shape, gap};
 }
 
-// The power of the gap in B measured on the data (PredictionError::gap_exponent): each
-// single fold's composition held out again together with the next composition (when that
-// is interior too), and the error at each of the two against the same composition's single
-// fold: the least-squares slope through 0 of log(error ratio) on log(gap ratio), errors
-// over B's shape 4 t (1 - t), kept in 0..GapExponent. The data can only lower the method's
-// exponent: scatter between samples does not shrink with the gap, so real series give well
-// under 1, and as the delivered model's gaps are smaller than the folds' the law there is
-// flatter still, never steeper, than the slope measured between the folds' gaps (on smooth
-// curves with added scatter, an uncapped slope of 2 or more made the bars too narrow). The
-// method's own where no pair can be held out (three compositions).
+// The power of the gap in B measured on the data (PredictionError::gap_exponent): single
+// folds' compositions held out again together with the next composition (when that is
+// interior too; pairs that do not share a composition, so about half as many fits again),
+// and the error at each of the two against the same composition's single fold: the least-squares
+// slope through 0 of log(error ratio) on log(gap ratio), errors over B's shape 4 t (1 - t), kept in
+// 0..GapExponent. The data can only lower the method's exponent: scatter between samples does not
+// shrink with the gap, so real series give well under 1, and as the delivered model's gaps are
+// smaller than the folds' the law there is flatter still, never steeper, than the slope measured
+// between the folds' gaps (on smooth curves with added scatter, an uncapped slope of 2 or more made
+// the bars too narrow). The method's own where no pair can be held out (three compositions).
 double MeasuredGapExponent(const MethodInfo& method, const std::vector<Fold>& singles,
                            const Dataset& dataset, const FitSettings& settings,
                            const AlloyModel& model, const std::vector<double>& grid) {
@@ -202,7 +202,8 @@ double MeasuredGapExponent(const MethodInfo& method, const std::vector<Fold>& si
   std::vector<std::vector<double>> pairs;
   for (const Fold& f : singles) {
     const size_t i = std::lower_bound(xs.begin(), xs.end(), f.x) - xs.begin();
-    if (f.model && i + 2 < xs.size()) pairs.push_back({f.x, xs[i + 1]});
+    const bool taken = !pairs.empty() && pairs.back()[1] == f.x;
+    if (f.model && !taken && i + 2 < xs.size()) pairs.push_back({f.x, xs[i + 1]});
   }
   if (pairs.empty()) return GapExponent(method, dataset);
   const std::vector<Fold> together = FitFolds(method, dataset, settings, model, pairs);

@@ -9,7 +9,8 @@
 // BM_FitDefault is the smooth fit as `fit --method smooth` runs it (smoothing by leave-one-
 // composition-out cross-validation over 8 candidates) on all samples and the 5 nm grid;
 // BM_BuildModel is the whole of what `fit` does for a method before writing the file:
-// the fit and its prediction error from 9 leave-one-out folds (fit::BuildModel, the folds
+// the fit and its prediction error from 9 leave-one-out folds and 4 folds holding out two
+// neighbouring compositions for its gap exponent (fit::BuildModel, the folds
 // on the machine's cores: wall-clock time), for smooth, physical and auto.
 #include <benchmark/benchmark.h>
 

@@ -229,7 +229,7 @@ echo "== fit time against data size (smooth, smoothing fixed; median of $fit_rep
     printf "%-24s %9.2f ms %9.2f ms (%.1fx) %9.2f ms (%.1fx)\n", "samples 3/6/11", s[3], s[6], s[6] / s[3], s[11], s[11] / s[3]
     printf "(the knots are the samples: one direct solve per wavelength, no Ceres iterations)\n"
     printf "smooth fit, smoothing cross-validated (11 samples, 95 nodes): %.1f ms\n", d
-    printf "fit as alloycolor fit runs it, with its prediction error from 9 leave-one-out folds (wall time):\n"
+    printf "fit as alloycolor fit runs it, with its prediction error from 9 leave-one-out folds and 4 pair folds (wall time):\n"
     printf "  smooth %.0f ms (target 100 ms: %.2fx), physical %.0f ms, auto (every method scored, the best kept) %.0f ms\n", b[0], b[0] / 100, b[1], b[2]
   }'
 

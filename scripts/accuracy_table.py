@@ -21,7 +21,7 @@ SPLITS = [
 ]
 COVERAGE_SETS = [("Au-Ag", AUAG), ("Cu-Zn (Querry)", "data/Cu-Zn"),
                  ("Cu-Zn (Werner's Zn)", "data/Cu-Zn/dataset-werner-zn.json")]
-COVERAGE_METHODS = ["paper", "eps-linear", "eps-pchip", "smooth", "auto"]
+COVERAGE_METHODS = ["paper", "eps-linear", "eps-pchip", "eps-spline", "smooth", "physical", "auto"]
 
 
 def manifest(path):

@@ -159,6 +159,12 @@ double EndFactor(const std::vector<FoldErrors>& errors) {
                     1.0, 10.0);
 }
 
+// |predicted - eps| / |eps| of a sample's measured eps at a wavelength (may be NaN).
+double RelativeEpsError(std::complex<double> predicted, const Sample& s, double lambda_nm) {
+  const std::complex<double> nk = NkAt(s.nk, lambda_nm), e = nk * nk;
+  return std::abs(predicted - e) / std::abs(e);
+}
+
 // A fold's RMS relative eps error at its held-out samples of composition x over B's shape
 // 4 t (1 - t) there (no gap factor), and its gap; NaN where it says nothing.
 std::pair<double, double> ShapedError(const Fold& f, double x, const std::vector<double>& grid) {
@@ -176,8 +182,7 @@ std::pair<double, double> ShapedError(const Fold& f, double x, const std::vector
   for (const Sample* s : f.held) {
     if (s->x_atomic != x) continue;
     for (size_t j = 0; j < grid.size(); ++j) {
-      const std::complex<double> nk = NkAt(s->nk, grid[j]), e = nk * nk;
-      const double r = std::abs(predicted[j] - e) / std::abs(e);
+      const double r = RelativeEpsError(predicted[j], *s, grid[j]);
       if (std::isfinite(r)) sum_sq += r * r, ++count;
     }
   }
@@ -187,17 +192,19 @@ std::pair<double, double> ShapedError(const Fold& f, double x, const std::vector
 
 // The power of the gap in B measured on the data (PredictionError::gap_exponent): single
 // folds' compositions held out again together with the next composition (when that is
-// interior too; pairs that do not share a composition, so about half as many fits again),
-// and the error at each of the two against the same composition's single fold: the least-squares
-// slope through 0 of log(error ratio) on log(gap ratio), errors over B's shape 4 t (1 - t), kept in
-// 0..GapExponent. The data can only lower the method's exponent: scatter between samples does not
-// shrink with the gap, so real series give well under 1, and as the delivered model's gaps are
-// smaller than the folds' the law there is flatter still, never steeper, than the slope measured
-// between the folds' gaps (on smooth curves with added scatter, an uncapped slope of 2 or more made
-// the bars too narrow). The method's own where no pair can be held out (three compositions).
+// interior too; pairs that share no composition, so about half as many fits again), and
+// the error at each of the two against the same composition's single fold: the
+// least-squares slope through 0 of log(error ratio) on log(gap ratio), errors over B's
+// shape 4 t (1 - t), kept in 0..GapExponent. The data can only lower the method's
+// exponent: scatter between samples does not shrink with the gap, so real series give
+// well under 1, and as the delivered model's gaps are smaller than the folds' the law
+// there is flatter still, never steeper, than the slope measured between the folds' gaps
+// (on smooth curves with added scatter, an uncapped slope of 2 or more made the bars too
+// narrow). The method's own where no pair can be held out (three compositions).
 double MeasuredGapExponent(const MethodInfo& method, const std::vector<Fold>& singles,
                            const Dataset& dataset, const FitSettings& settings,
                            const AlloyModel& model, const std::vector<double>& grid) {
+  const double fallback = GapExponent(method, dataset);
   const std::vector<double> xs = DistinctCompositions(dataset);
   std::vector<std::vector<double>> pairs;
   for (const Fold& f : singles) {
@@ -205,7 +212,7 @@ double MeasuredGapExponent(const MethodInfo& method, const std::vector<Fold>& si
     const bool taken = !pairs.empty() && pairs.back()[1] == f.x;
     if (f.model && !taken && i + 2 < xs.size()) pairs.push_back({f.x, xs[i + 1]});
   }
-  if (pairs.empty()) return GapExponent(method, dataset);
+  if (pairs.empty()) return fallback;
   const std::vector<Fold> together = FitFolds(method, dataset, settings, model, pairs);
   double num = 0, den = 0;
   for (size_t k = 0; k < pairs.size(); ++k) {
@@ -221,7 +228,6 @@ double MeasuredGapExponent(const MethodInfo& method, const std::vector<Fold>& si
       den += lg * lg;
     }
   }
-  const double fallback = GapExponent(method, dataset);
   if (!(den > 0)) return fallback;
   return std::clamp(num / den, 0.0, fallback);
 }
@@ -264,8 +270,7 @@ PredictionError FoldPredictionError(const MethodInfo& method, std::vector<Fold>&
     const auto predicted = f.model->Permittivity(f.held.front()->x_atomic, grid);
     for (const Sample* s : f.held) {
       for (size_t j = 0; j < grid.size(); ++j) {
-        const std::complex<double> nk = NkAt(s->nk, grid[j]), e = nk * nk;
-        const double r = std::abs(predicted[j] - e) / std::abs(e);
+        const double r = RelativeEpsError(predicted[j], *s, grid[j]);
         fe.over_bump.push_back(std::isfinite(r) ? r / bump : 0.0);
       }
     }

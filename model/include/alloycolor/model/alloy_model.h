@@ -78,9 +78,9 @@ struct FitSummary {
 // most the method's own (registry.h: 2 for a linear interpolation, whose error on a smooth
 // curve grows as h^2, 1 for the others); under 1 where the samples scatter (the scatter
 // does not shrink with the gap); on three compositions, where no pair can be held out, 2
-// (the one fold is then a line). The calibration factor scales
-// it so that held-out colour errors, in the folds, have the spread the one-sigma colour
-// uncertainty claims. Draws of eps add
+// (the one fold is then a line). The calibration factor scales it so that held-out colour
+// errors, in the folds, have the spread the one-sigma colour uncertainty claims. Draws of
+// eps add
 //   calibration * scale * B * |eps| (z1 + i z2) / sqrt(2),
 // z1, z2 standard normal and the same at every wavelength of a draw (the error of an
 // interpolation across composition is smooth in wavelength).

@@ -18,6 +18,8 @@
 #include "alloycolor/model/optics.h"
 #include "alloycolor/model/sample_models.h"
 #include "test_util.h"
+// ChoiceCalibrationFactor is internal to the fit library.
+#include "../fit/src/folds.h"
 
 namespace alloycolor {
 namespace {
@@ -315,6 +317,44 @@ TEST(PredictionError, CalibrationByHand) {
   EXPECT_EQ(fit::SigmaCalibration({}), 1.0);
   EXPECT_EQ(fit::SigmaCalibration({-50.0}), 1e-3);  // clamped
   EXPECT_EQ(fit::SigmaCalibration({50.0}), 1e3);
+}
+
+// auto's calibration on its choice by hand. Three folds at 0.25, 0.5, 0.75 (sigma 1 each);
+// the preferred candidate errs 1, 1, 1, the other 0.3, 0.92, 0.92. On all folds the other
+// wins (mean 0.713, more than 10 % and one standard error, 0.207, below the preferred's
+// 1). Without the fold at 0.25 it no longer does (0.92 is within 10 % of 1), so that fold's
+// error is the preferred's, 1; without either other fold it still wins. The factor:
+// sqrt((1 + 2 * 0.92^2) / 3) / sqrt((0.3^2 + 2 * 0.92^2) / 3) = 1.22899.
+TEST(PredictionError, AutoCalibratedOnItsChoiceByHand) {
+  const auto candidate = [](std::vector<double> values, std::vector<double> sigmas) {
+    fit::Scored r;
+    r.values = std::move(values);
+    r.held_x = {0.25, 0.5, 0.75};
+    r.sigmas = std::move(sigmas);
+    return r;
+  };
+  std::vector<fit::Scored> candidates;
+  candidates.push_back(candidate({1, 1, 1}, {2, 2, 2}));
+  candidates.push_back(candidate({0.3, 0.92, 0.92}, {1, 1, 1}));
+  const std::vector<bool> no_miss(2, false);
+  const double expected =
+      std::sqrt((1 + 2 * 0.92 * 0.92) / 3) / std::sqrt((0.3 * 0.3 + 2 * 0.92 * 0.92) / 3);
+  EXPECT_NEAR(fit::ChoiceCalibrationFactor(candidates, no_miss, 1), expected, 1e-12);
+  // Each fold's ratio is over the chosen one's sigma there: halving the sigma at 0.25
+  // doubles both readings there, sqrt((4 + 2 * 0.92^2) / (0.36 + 2 * 0.92^2)).
+  candidates[1].sigmas[0] = 0.5;
+  EXPECT_NEAR(fit::ChoiceCalibrationFactor(candidates, no_miss, 1),
+              std::sqrt((4 + 2 * 0.92 * 0.92) / (0.36 + 2 * 0.92 * 0.92)), 1e-12);
+  // Every fold leads to the same choice: 1 (never below).
+  candidates[1].values = {0.5, 0.5, 0.5};
+  EXPECT_EQ(fit::ChoiceCalibrationFactor(candidates, no_miss, 1), 1.0);
+  // One fold: nothing to leave out.
+  for (fit::Scored& r : candidates) {
+    r.values.resize(1);
+    r.held_x.resize(1);
+    r.sigmas.resize(1);
+  }
+  EXPECT_EQ(fit::ChoiceCalibrationFactor(candidates, no_miss, 1), 1.0);
 }
 
 }  // namespace

@@ -63,12 +63,12 @@ std::vector<Fold> FitFolds(const MethodInfo& method, const Dataset& dataset,
   return folds;
 }
 
-MethodScore ScoreFolds(const std::string& method, std::vector<Fold>& folds,
-                       const color::Colorimeter& colorimeter, std::string* metric,
-                       std::vector<double>* values) {
-  MethodScore score;
+void ScoreFolds(const std::string& method, const std::vector<Fold>& folds,
+                const color::Colorimeter& colorimeter, Scored* r) {
+  MethodScore& score = r->score;
+  score = MethodScore{};
   score.method = method;
-  *metric = "reflectance_rms at normal incidence";  // data without colour
+  r->metric = "reflectance_rms at normal incidence";  // data without colour
   double sum = 0;
   int failed = 0;
   for (const Fold& f : folds) {
@@ -81,7 +81,7 @@ MethodScore ScoreFolds(const std::string& method, std::vector<Fold>& folds,
       double v = 0;
       try {
         const color::SampleError e = color::ErrorAgainstSample(colorimeter, *f.model, *s);
-        if (e.has_colour()) *metric = "delta_e00 at normal incidence";
+        if (e.has_colour()) r->metric = "delta_e00 at normal incidence";
         v = e.score();
       } catch (const Error&) {
         fold_failed = true;
@@ -92,7 +92,9 @@ MethodScore ScoreFolds(const std::string& method, std::vector<Fold>& folds,
         continue;
       }
       sum += v;
-      values->push_back(v);
+      r->values.push_back(v);
+      r->held_x.push_back(f.x);
+      r->sigmas.push_back(f.sigma);
       score.max = score.folds == 0 ? v : std::max(score.max, v);
       ++score.folds;
     }
@@ -104,7 +106,6 @@ MethodScore ScoreFolds(const std::string& method, std::vector<Fold>& folds,
   } else {
     score.mean = score.folds > 0 ? sum / score.folds : 0;
   }
-  return score;
 }
 
 std::unique_ptr<AlloyModel> Build(const MethodInfo& method, const Dataset& dataset,

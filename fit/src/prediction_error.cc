@@ -320,6 +320,7 @@ PredictionError FoldPredictionError(const MethodInfo& method, std::vector<Fold>&
       const double x = f.held.front()->x_atomic;
       const double sigma = color::DeltaE00Sigma(cm, *f.model, x, 0.0);
       if (!(sigma > 0) || !std::isfinite(sigma)) continue;
+      f.sigma = sigma;
       const color::Lab predicted = color::LabFromXYZ(
           color::MaterialXYZ(cm, color::IndexOnGrid(cm, *f.model, x), 0.0), cm.White());
       for (const Sample* s : f.held) {

@@ -29,7 +29,7 @@ Scored ScoreWithFolds(const MethodInfo& method, const Dataset& dataset, const Fi
     std::vector<Fold> folds;
     AddFolds(method, dataset, settings, model.get(), &folds);
     r.model = std::move(model);
-    r.score = ScoreFolds(method.name, folds, *settings.colorimeter, &r.metric, &r.values);
+    ScoreFolds(method.name, folds, *settings.colorimeter, &r);
   } catch (const Error& e) {
     r.score.error = e.what();
   }
@@ -71,14 +71,20 @@ struct Choice {
   std::vector<size_t> acceptable;  // every candidate the rule accepts, in order; chosen first
 };
 
-Choice ChooseSimplest(const std::vector<Scored>& candidates, bool squared = false) {
+// `except`: the folds' scores at that composition left out (NaN: none).
+Choice ChooseSimplest(const std::vector<Scored>& candidates, bool squared = false,
+                      double except = std::nan("")) {
   const size_t none = candidates.size();
   Choice c{none, none, ""};
   std::vector<std::vector<double>> loss(candidates.size());
   std::vector<double> mean(candidates.size(), 0.0);
   for (size_t i = 0; i < candidates.size(); ++i) {
     if (!candidates[i].score.error.empty()) continue;
-    for (double v : candidates[i].values) loss[i].push_back(squared ? v * v : v);
+    const Scored& r = candidates[i];
+    for (size_t k = 0; k < r.values.size(); ++k) {
+      if (k < r.held_x.size() && r.held_x[k] == except) continue;
+      loss[i].push_back(squared ? r.values[k] * r.values[k] : r.values[k]);
+    }
     for (double v : loss[i]) mean[i] += v / loss[i].size();
     if (!loss[i].empty() && (c.best == none || mean[i] < mean[c.best])) c.best = i;
   }
@@ -302,6 +308,8 @@ Scored RememberedDegreeChoice(const MethodInfo& method, const Dataset& dataset,
     r.model = method.read(m.model, "the remembered " + method.name + " fit");
     r.score = m.score;
     r.values = m.values;
+    r.held_x = m.held_x;
+    r.sigmas = m.sigmas;
     r.metric = m.metric;
     return r;
   };
@@ -312,7 +320,7 @@ Scored RememberedDegreeChoice(const MethodInfo& method, const Dataset& dataset,
   }
   Scored r = BuildChoosingDegree(method, dataset, settings);
   if (!r.model) return r;
-  FitMemo::Remembered m{r.model->ToJson(), r.score, r.values, r.metric};
+  FitMemo::Remembered m{r.model->ToJson(), r.score, r.values, r.held_x, r.sigmas, r.metric};
   const std::lock_guard<std::mutex> lock(memo.mutex);
   memo.degree_choices.emplace(std::move(key), std::move(m));
   return r;
@@ -338,6 +346,25 @@ double EndMiss(const AlloyModel& model, const Dataset& dataset, bool* misses) {
     *misses |= e > (colour ? kInSampleMissDe00 : kInSampleMissReflectance);
   }
   return worst;
+}
+
+// auto's rule: the simplest within the folds' scatter of the best (ChooseSimplest); the
+// folds cannot hold out the ends, so among the candidates the folds cannot tell apart, one
+// that contradicts the user's own end samples gives way to one that does not. `except`:
+// the folds at that composition left out (NaN: none).
+Choice ChooseAmong(const std::vector<Scored>& candidates, const std::vector<bool>& misses_end,
+                   double except = std::nan("")) {
+  Choice c = ChooseSimplest(candidates, /*squared=*/false, except);
+  if (c.chosen < candidates.size() && misses_end[c.chosen]) {
+    for (size_t i : c.acceptable) {
+      if (!misses_end[i]) {
+        c.chosen = i;
+        c.rule = "the ends' own samples";
+        break;
+      }
+    }
+  }
+  return c;
 }
 
 // Why auto chose what it chose, one line.
@@ -375,6 +402,32 @@ std::string ChoiceReason(const MethodSelection& selection, const Choice& c,
 }
 
 }  // namespace
+
+double ChoiceCalibrationFactor(const std::vector<Scored>& candidates,
+                               const std::vector<bool>& misses_end, size_t chosen) {
+  const Scored& own = candidates[chosen];
+  if (own.sigmas.size() != own.values.size()) return 1;
+  std::vector<double> held = own.held_x;
+  std::sort(held.begin(), held.end());
+  held.erase(std::unique(held.begin(), held.end()), held.end());
+  if (held.size() < 2) return 1;
+  std::vector<double> log_own, log_choice;
+  for (double x : held) {
+    const Choice c = ChooseAmong(candidates, misses_end, x);
+    if (c.chosen >= candidates.size()) return 1;
+    const Scored& other = candidates[c.chosen];
+    if (other.held_x != own.held_x) return 1;  // scored on other folds
+    for (size_t k = 0; k < own.values.size(); ++k) {
+      const double sigma = own.sigmas[k];
+      if (own.held_x[k] != x || !(sigma > 0) || !std::isfinite(sigma)) continue;
+      if (!(own.values[k] > 0) || !(other.values[k] > 0)) continue;
+      log_own.push_back(std::log(own.values[k] / sigma));
+      log_choice.push_back(std::log(other.values[k] / sigma));
+    }
+  }
+  if (log_own.empty()) return 1;
+  return std::max(SigmaCalibration(log_choice) / SigmaCalibration(log_own), 1.0);
+}
 
 std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings& settings) {
   const std::vector<const MethodInfo*> order = AutoCandidates();  // preferred first
@@ -429,18 +482,7 @@ std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings&
     selection.scores.push_back(r.score);
     if (selection.metric.empty()) selection.metric = candidates.back().metric;
   }
-  Choice c = ChooseSimplest(candidates);
-  // The folds cannot hold out the ends: among the candidates the folds cannot tell apart,
-  // one that contradicts the user's own end samples gives way to one that does not.
-  if (c.chosen < order.size() && misses_end[c.chosen]) {
-    for (size_t i : c.acceptable) {
-      if (!misses_end[i]) {
-        c.chosen = i;
-        c.rule = "the ends' own samples";
-        break;
-      }
-    }
-  }
+  Choice c = ChooseAmong(candidates, misses_end);
   // One fold (three compositions): it holds out the middle sample and predicts it from the
   // ends, where every interpolation is a straight line in its own space, so the fold
   // compares spaces, not the curves delivered through three samples, and one score has no
@@ -462,6 +504,12 @@ std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings&
   }
   selection.reason = ChoiceReason(selection, c, order);
   std::unique_ptr<AlloyModel> model = std::move(candidates[c.chosen].model);
+  const double factor = ChoiceCalibrationFactor(candidates, misses_end, c.chosen);
+  if (factor > 1 && model->prediction_error().present()) {
+    PredictionError error = model->prediction_error();
+    error.calibration = std::min(error.calibration * factor, 1e3);
+    model->set_prediction_error(std::move(error));
+  }
   FitSummary summary = model->fit_summary();
   summary.selection = selection;
   model->set_fit_summary(std::move(summary));

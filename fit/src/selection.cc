@@ -504,13 +504,14 @@ std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings&
   }
   selection.reason = ChoiceReason(selection, c, order);
   std::unique_ptr<AlloyModel> model = std::move(candidates[c.chosen].model);
+  FitSummary summary = model->fit_summary();
   const double factor = ChoiceCalibrationFactor(candidates, misses_end, c.chosen);
   if (factor > 1 && model->prediction_error().present()) {
     PredictionError error = model->prediction_error();
     error.calibration = std::min(error.calibration * factor, 1e3);
     model->set_prediction_error(std::move(error));
+    summary.details["calibration_times_for_the_choice"] = factor;
   }
-  FitSummary summary = model->fit_summary();
   summary.selection = selection;
   model->set_fit_summary(std::move(summary));
   return model;

@@ -255,6 +255,29 @@ TEST_F(ManifestTest, ErrorsNameTheManifestAndTheField) {
   }
 }
 
+// The stated measurement precision: read, defaulted to 0 (not stated), and refused by name.
+TEST_F(ManifestTest, PrecisionIsReadAndCheckedByName) {
+  const std::string one_sample = R"("samples": [{"x": 0.5, "file": "a.yml"}])";
+  Dataset dataset = LoadDataset(Manifest(std::string(kHead) + one_sample + "}"));
+  EXPECT_EQ(dataset.precision_n, 0.0);
+  EXPECT_EQ(dataset.precision_k, 0.0);
+  dataset = LoadDataset(Manifest(std::string(kHead) + one_sample +
+                                 R"(, "precision": {"n": 0.002, "k": 0.005, "x": 1}})"));
+  EXPECT_EQ(dataset.precision_n, 0.002);
+  EXPECT_EQ(dataset.precision_k, 0.005);
+  ASSERT_EQ(dataset.warnings.size(), 1u);
+  EXPECT_THAT(dataset.warnings[0], HasSubstr("precision: unknown key 'x'"));
+  for (const auto& [text, expected] : std::vector<std::pair<std::string, std::string>>{
+           {R"("precision": 0.002)", ": precision: '0.002' is not an object"},
+           {R"("precision": {"n": -0.1})", ": precision: n: '-0.1' is not a standard deviation"},
+           {R"("precision": {"k": "0.01"})", ": precision: k: '\"0.01\"' is not a standard"},
+           {R"("precision": {"k": 11})", ": precision: k: '11' is not a standard deviation"}}) {
+    SCOPED_TRACE(text);
+    const std::string path = Manifest(std::string(kHead) + one_sample + ", " + text + "}");
+    EXPECT_THAT(ErrorOf(dir_), HasSubstr(path + expected));
+  }
+}
+
 // Replicates: distinct files at one composition are samples of their own, adjacent and in
 // the manifest's order; the helpers see one composition with both.
 TEST_F(ManifestTest, ReplicatesAreAcceptedInTheManifestsOrder) {

@@ -144,6 +144,32 @@ TEST(PredictionError, FitsOfThreeCompositionsOrMoreCarryItAndTheFileKeepsIt) {
   EXPECT_FALSE(fit::BuildModel("eps-pchip", all, settings)->HasUncertainty());
 }
 
+// The stated precision by hand: n + i k = sqrt(-5 + 2i) (1 + x / 100) at every wavelength,
+// n and k each off by the manifest's standard deviations (0.01, 0.02), far above what the
+// printed digits resolve: precision = 2 sqrt(0.01^2 + 0.02^2) / |n + i k|, the median over
+// the samples that at x = 0.5. Not stated: the digits' alone, far smaller. At a training
+// composition the colour sigma is then the precision's alone, and grows with it.
+TEST(PredictionError, StatedPrecisionByHand) {
+  const color::Colorimeter cm = color::Colorimeter::Load(DataDir(), "D65", 2);
+  fit::FitSettings settings;
+  settings.colorimeter = &cm;
+  const std::string dir = testing::WriteSyntheticDataset(
+      {0.0, 0.25, 0.5, 0.75, 1.0},
+      [](double x, double) { return std::complex<double>(-5.0, 2.0) * std::pow(1 + x / 100, 2); });
+  const auto digits = fit::BuildModel("eps-linear", LoadDataset(dir), settings);
+  nlohmann::json manifest = nlohmann::json::parse(ReadFileText(dir + "/dataset.json"));
+  manifest["precision"] = {{"n", 0.01}, {"k", 0.02}};
+  testing::WriteText(dir + "/dataset.json", manifest.dump());
+  const auto stated = fit::BuildModel("eps-linear", LoadDataset(dir), settings);
+  const double expected =
+      2 * std::hypot(0.01, 0.02) / (std::sqrt(std::abs(std::complex(-5.0, 2.0))) * 1.005);
+  EXPECT_NEAR(stated->prediction_error().precision, expected, 1e-6 * expected);
+  EXPECT_LT(digits->prediction_error().precision, 0.01 * expected);
+  const double sigma_digits = color::DeltaE00Sigma(cm, *digits, 0.5, 0.0);
+  const double sigma_stated = color::DeltaE00Sigma(cm, *stated, 0.5, 0.0);
+  EXPECT_GT(sigma_stated, 50 * sigma_digits);
+}
+
 // The end factor by hand. eps = -100 + i (1 + g(x)) at x = 0, 1/6, ..., 1 (every
 // wavelength alike), g = x / 2 + x^2 + (1/3 - x)^2 below 1/3 + (x - 2/3)^2 above 2/3.
 // eps-linear, leaving out x with neighbours h = 1/6 away, misses x^2 by h^2 = 2/72

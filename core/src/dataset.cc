@@ -214,6 +214,28 @@ void ReadSampleColumns(const std::string& manifest, const std::string& where, co
   sample->file = file + " (columns " + sample->columns.n + "," + sample->columns.k + ")";
 }
 
+// The manifest's "precision" (optional): {"n": sd, "k": sd}, each a number from 0 to 10.
+void ReadPrecision(const std::string& manifest, const Json& root, Dataset* dataset) {
+  if (!root.contains("precision")) return;
+  const Json& precision = root.at("precision");
+  if (!precision.is_object()) {
+    Fail(manifest + ": precision: " + Quote60(precision.dump()) +
+         " is not an object such as {\"n\": 0.002, \"k\": 0.002}");
+  }
+  WarnUnknownKeys(manifest, "precision: ", precision, {"n", "k"}, &dataset->warnings);
+  for (const auto& [key, target] :
+       {std::pair{"n", &dataset->precision_n}, std::pair{"k", &dataset->precision_k}}) {
+    if (!precision.contains(key)) continue;
+    const Json& value = precision.at(key);
+    const double v = value.is_number() ? value.get<double>() : -1;
+    if (!value.is_number() || !std::isfinite(v) || v < 0 || v > 10) {
+      Fail(manifest + ": precision: " + key + ": " + Quote60(value.dump()) +
+           " is not a standard deviation from 0 to 10");
+    }
+    *target = v;
+  }
+}
+
 // Entry i of the manifest's "samples": its files, columns and composition (not yet its data).
 Sample ReadSampleEntry(const std::string& manifest, const fs::path& manifest_path, std::size_t i,
                        const Json& entry, const Dataset& dataset,
@@ -324,10 +346,12 @@ Dataset Load(const std::string& dir_or_manifest) {
   Dataset dataset;
   dataset.manifest_path = manifest;
   if (!root.is_object()) Fail(manifest + ": the manifest is not a JSON object");
-  WarnUnknownKeys(manifest, "", root,
-                  {"name", "system", "composition", "samples", "source", "notes", "elements"},
-                  &dataset.warnings);
+  WarnUnknownKeys(
+      manifest, "", root,
+      {"name", "system", "composition", "samples", "source", "notes", "elements", "precision"},
+      &dataset.warnings);
   ReadSystem(manifest, root, &dataset);
+  ReadPrecision(manifest, root, &dataset);
   dataset.composition = ReadCompositionKind(manifest, root);
 
   if (!root.contains("samples") || !root.at("samples").is_array() || root.at("samples").empty()) {

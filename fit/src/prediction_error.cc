@@ -42,15 +42,16 @@ double DecimalStep(const std::vector<double>& values) {
   return std::pow(10.0, -decimals);
 }
 
-// The relative eps error of one measurement that the data's digits can resolve: n and k
-// each off by up to half a step (a uniform error, standard deviation step / sqrt(12)), so
+// The relative eps error of one measurement: n and k each off by the precision the
+// manifest states (Dataset::precision_n, _k) or, where larger, by what the data's digits
+// can resolve (up to half a step: a uniform error, standard deviation step / sqrt(12)), so
 // |d eps| / |eps| = 2 sqrt(sd_n^2 + sd_k^2) / |n + i k|; the median over the samples'
 // wavelengths inside [lo, hi].
-double DigitsPrecision(const Dataset& dataset, double lo, double hi) {
+double MeasurementPrecision(const Dataset& dataset, double lo, double hi) {
   std::vector<double> relative;
   for (const Sample& s : dataset.samples) {
-    const double sd_n = DecimalStep(s.nk.n) / std::sqrt(12.0);
-    const double sd_k = DecimalStep(s.nk.k) / std::sqrt(12.0);
+    const double sd_n = std::max(dataset.precision_n, DecimalStep(s.nk.n) / std::sqrt(12.0));
+    const double sd_k = std::max(dataset.precision_k, DecimalStep(s.nk.k) / std::sqrt(12.0));
     for (size_t j = 0; j < s.nk.lambda_nm.size(); ++j) {
       if (s.nk.lambda_nm[j] < lo || s.nk.lambda_nm[j] > hi) continue;
       const double size = std::hypot(s.nk.n[j], s.nk.k[j]);
@@ -401,7 +402,7 @@ void EstimatePredictionError(const MethodInfo& method, std::vector<Fold>& fitted
   const double lo = model->lambda_min_nm(), hi = model->lambda_max_nm();
   AddMisfit(dataset, *model, MisfitGrid(lo, hi), &error);
   if (!error.present() && error.misfit.empty() && error.scatter.empty()) return;
-  error.precision = DigitsPrecision(dataset, lo, hi);
+  error.precision = MeasurementPrecision(dataset, lo, hi);
   if (!error.present()) {
     // No folds (two compositions): the misfit and scatter alone.
     error.lambda_nm = error.misfit_lambda_nm;

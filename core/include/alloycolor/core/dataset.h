@@ -47,6 +47,10 @@ struct Dataset {
   // manifest's order).
   std::vector<Sample> samples;
   std::vector<std::string> warnings;
+  // The manifest's "precision": one standard deviation of a measured n and of a measured k
+  // as the user's instrument states it (absolute); 0 where not stated, and the printed
+  // digits then set the error bars' floor alone.
+  double precision_n = 0, precision_k = 0;
 };
 
 // Accepts a folder holding dataset.json or the manifest file itself.

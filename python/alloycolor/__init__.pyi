@@ -53,6 +53,7 @@ class Dataset:
     composition: str
     manifest_path: str
     warnings: list[str]
+    precision: dict[str, float]
     x_atomic: np.ndarray
     samples: list[dict[str, Any]]
     def without(self, x: Iterable[Union[float, str]]) -> Dataset: ...

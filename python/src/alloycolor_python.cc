@@ -549,6 +549,13 @@ PYBIND11_MODULE(_alloycolor, m) {
       .def_property_readonly("system", [](const Dataset& d) { return d.system.Name(); })
       .def_readonly("composition", &Dataset::composition)
       .def_readonly("warnings", &Dataset::warnings)
+      .def_property_readonly("precision",
+                             [](const Dataset& d) {
+                               py::dict r;
+                               r["n"] = d.precision_n;
+                               r["k"] = d.precision_k;
+                               return r;
+                             })
       .def_property_readonly("x_atomic",
                              [](const Dataset& d) {
                                std::vector<double> xs;

@@ -144,6 +144,26 @@ TEST(PredictionError, FitsOfThreeCompositionsOrMoreCarryItAndTheFileKeepsIt) {
   EXPECT_FALSE(fit::BuildModel("eps-pchip", all, settings)->HasUncertainty());
 }
 
+// auto delivers the chosen method's model with its calibration times the factor for the
+// choice, and records the factor: on Werner's Cu-Zn it keeps smooth, and leaving out one of
+// its three folds lets a rival win (the factor is above 1). The chosen method fitted on its
+// own gives the calibration before the factor.
+TEST(PredictionError, AutoAppliesAndRecordsItsChoiceFactor) {
+  const color::Colorimeter cm = color::Colorimeter::Load(DataDir(), "D65", 2);
+  fit::FitSettings settings;
+  settings.colorimeter = &cm;
+  const Dataset data = LoadDataset(DataDir() + "/Cu-Zn/dataset-werner-zn.json");
+  const auto chosen = fit::BuildModel("auto", data, settings);
+  ASSERT_EQ(chosen->method(), "smooth");
+  const auto alone = fit::BuildModel("smooth", data, settings);
+  const nlohmann::json& details = chosen->fit_summary().details;
+  ASSERT_TRUE(details.contains("calibration_times_for_the_choice"));
+  const double factor = details.at("calibration_times_for_the_choice").get<double>();
+  EXPECT_GT(factor, 1.0);
+  EXPECT_NEAR(chosen->prediction_error().calibration,
+              alone->prediction_error().calibration * factor, 1e-9);
+}
+
 // The stated precision by hand: n + i k = sqrt(-5 + 2i) (1 + x / 100) at every wavelength,
 // n and k each off by the manifest's standard deviations (0.01, 0.02), far above what the
 // printed digits resolve: precision = 2 sqrt(0.01^2 + 0.02^2) / |n + i k|, the median over

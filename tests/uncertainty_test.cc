@@ -308,17 +308,17 @@ TEST(PredictionError, GapExponentMeasuredByHand) {
               expected, 1e-6);
 }
 
-// The calibration is cross-fitted: each fold's sigma comes from the other folds' scale.
-// eps = eps0 (1 + x / 10 + d(x)) at x = 0, 1/3, 2/3, 1 (every wavelength alike), d = 0 at
-// the ends; eps-linear leaving out 1/3 misses by (d(2/3) / 2 - d(1/3)) / (1 + 1/30 + d(1/3))
-// relative to eps, leaving out 2/3 by (d(1/3) / 2 - d(2/3)) / (1 + 2/30 + d(2/3)), both
-// folds with the same B. For
-// small errors along eps0 the held-out CIEDE2000 over the one-sigma colour uncertainty is
-// g |error| / scale, g the same in every fold: cross-fitted, the folds' log ratios are
-// ln g +- ln(a / b) (a, b the two errors), against ln g + ln(a / s), ln g + ln(b / s) with
-// s = sqrt((a^2 + b^2) / 2), the scale of both, had each fold's own error entered its sigma.
-// g is read off a second data set whose two errors are nearly equal.
-TEST(PredictionError, CalibrationIsCrossFitted) {
+// The calibration is a ratio of sums: the folds' squared CIEDE2000 errors over their squared
+// one-sigmas (each fold's from the other folds' scale). eps = eps0 (1 + x / 10 + d(x)) at
+// x = 0, 1/3, 2/3, 1 (every wavelength alike), d = 0 at the ends; eps-linear leaving out
+// 1/3 misses by (d(2/3) / 2 - d(1/3)) / (1 + 1/30 + d(1/3)) relative to eps, leaving out 2/3
+// by (d(1/3) / 2 - d(2/3)) / (1 + 2/30 + d(2/3)), both folds with the same B. For small
+// errors along eps0 a fold's CIEDE2000 is g' times its error and its sigma h times the other
+// fold's, so the calibration is g' / h whatever the two errors, a and b: the mean of the
+// squared ratios would be that times sqrt((k^2 + 1 / k^2) / 2), k = a / b, growing without
+// bound as the errors part. Two data sets, errors nearly equal and in the ratio 1 : 2, give
+// the same calibration.
+TEST(PredictionError, CalibrationDoesNotGrowAsTwoFoldsPart) {
   const std::complex<double> eps0(-5.0, 2.0);
   const auto calibration = [&](double d1, double d2) {
     const std::string dir =
@@ -335,62 +335,70 @@ TEST(PredictionError, CalibrationIsCrossFitted) {
     EXPECT_EQ(model->prediction_error().folds, 2);
     return model->prediction_error().calibration;
   };
-  const auto errors = [](double d1, double d2) {
-    return std::pair{std::abs((d2 / 2 - d1) / (1 + 1.0 / 30 + d1)),
-                     std::abs((d1 / 2 - d2) / (1 + 2.0 / 30 + d2))};
-  };
-  // Nearly equal errors: calibration = g * SigmaCalibration({ln k, -ln k}), k their ratio.
-  const double eta = 0.004;
-  const auto [a0, b0] = errors(-eta, eta);
-  const double log_g = std::log(calibration(-eta, eta)) -
-                       std::log(fit::SigmaCalibration({std::log(a0 / b0), std::log(b0 / a0)}));
-  // Errors in the ratio 1 : 2.
   const double e = 0.01;
-  const auto [a, b] = errors(0.0, e);
-  const double s = std::sqrt((a * a + b * b) / 2);
-  const double cross = fit::SigmaCalibration({log_g + std::log(a / b), log_g + std::log(b / a)});
-  const double own = fit::SigmaCalibration({log_g + std::log(a / s), log_g + std::log(b / s)});
-  EXPECT_GT(cross / own, 1.3);  // the two readings differ plainly (1.48)
-  EXPECT_NEAR(calibration(0.0, e) / cross, 1.0, 0.03);
+  const double a = std::abs((e / 2 - 0) / (1 + 1.0 / 30)), b = std::abs(-e / (1 + 2.0 / 30 + e));
+  const double k = b / a;
+  EXPECT_GT(std::sqrt((k * k + 1 / (k * k)) / 2), 1.4);  // what a mean of ratios would add
+  const double eta = 0.004;
+  EXPECT_NEAR(calibration(0.0, e) / calibration(-eta, eta), 1.0, 0.03);
 }
 
-// The calibration by hand (docs/model-format.md): the root mean square of the ratios.
-// Five folds that each saw twice the predicted error: 2. Ratios 0.1, 1, 10:
-// sqrt((0.01 + 1 + 100) / 3) = 5.80259.
+// The calibration by hand (docs/model-format.md): errors 1, 2, 3 with sigmas 1, 1, 2 give
+// sqrt((1 + 4 + 9) / (1 + 1 + 4)) = 1.52753 from one fold; a sigma that is not positive is
+// left out.
 TEST(PredictionError, CalibrationByHand) {
-  EXPECT_NEAR(fit::SigmaCalibration(std::vector<double>(5, std::log(2.0))), 2.0, 1e-12);
-  EXPECT_NEAR(fit::SigmaCalibration({std::log(0.1), 0.0, std::log(10.0)}), 5.80259, 1e-5);
-  EXPECT_EQ(fit::SigmaCalibration({}), 1.0);
-  EXPECT_EQ(fit::SigmaCalibration({-50.0}), 1e-3);  // clamped
-  EXPECT_EQ(fit::SigmaCalibration({50.0}), 1e3);
+  EXPECT_NEAR(fit::SigmaCalibration({1, 2, 3}, {1, 1, 2}, 1), 1.52753, 1e-5);
+  EXPECT_NEAR(fit::SigmaCalibration({2, 2, 2, 2, 2}, {1, 1, 1, 1, 1}, 1), 2.0, 1e-12);
+  EXPECT_NEAR(fit::SigmaCalibration({1, 2, 7}, {1, 1, 0}, 1), std::sqrt(5.0 / 2), 1e-12);
+  EXPECT_EQ(fit::SigmaCalibration({}, {}, 0), 1.0);
+  EXPECT_EQ(fit::SigmaCalibration({1e-9}, {1.0}, 1), 1e-3);  // clamped
+  EXPECT_EQ(fit::SigmaCalibration({1e9}, {1.0}, 1), 1e3);
+  // Two folds: times 1 + 1/4 + 1/16.
+  EXPECT_NEAR(fit::SigmaCalibration({1, 2}, {1, 2}, 2), 1.3125, 1e-12);
 }
 
-// auto's calibration on its choice by hand. Three folds at 0.25, 0.5, 0.75 (sigma 1 each);
-// the preferred candidate errs 1, 1, 1, the other 0.3, 0.92, 0.92. On all folds the other
-// wins (mean 0.713, more than 10 % and one standard error, 0.207, below the preferred's
-// 1). Without the fold at 0.25 it no longer does (0.92 is within 10 % of 1), so that fold's
-// error is the preferred's, 1; without either other fold it still wins. The factor:
-// sqrt((1 + 2 * 0.92^2) / 3) / sqrt((0.3^2 + 2 * 0.92^2) / 3) = 1.22899.
+// From k folds the calibration is widened to Student's t's one-sigma point with k degrees
+// of freedom: its 84.13 % quantile, found here by bisection on the t distribution's CDF
+// integrated from its density (Simpson's rule), within 1 % for 2 to 20 folds.
+TEST(PredictionError, CalibrationWidensToStudentsTOneSigma) {
+  const double p = 0.5 * (1 + std::erf(1 / std::sqrt(2.0)));  // the normal's one-sigma point
+  for (int k : {2, 3, 5, 8, 20}) {
+    const auto density = [k](double t) {
+      return std::tgamma((k + 1) / 2.0) / (std::sqrt(k * M_PI) * std::tgamma(k / 2.0)) *
+             std::pow(1 + t * t / k, -(k + 1) / 2.0);
+    };
+    const auto cdf = [&](double t) {  // 1/2 + the integral from 0 to t
+      const int n = 2000;
+      double sum = density(0) + density(t);
+      for (int i = 1; i < n; ++i) sum += (i % 2 ? 4 : 2) * density(t * i / n);
+      return 0.5 + sum * t / n / 3;
+    };
+    double lo = 1, hi = 3;
+    for (int i = 0; i < 60; ++i) (cdf((lo + hi) / 2) < p ? lo : hi) = (lo + hi) / 2;
+    EXPECT_NEAR(fit::SigmaCalibration({1}, {1}, k) / lo, 1.0, 0.01) << k << " folds";
+  }
+}
+
+// auto's calibration on its choice by hand. Three folds at 0.25, 0.5, 0.75; the preferred
+// candidate errs 1, 1, 1, the other 0.3, 0.92, 0.92. On all folds the other wins (mean
+// 0.713, more than 10 % below the preferred's 1, and its worst fold, 0.92, below the
+// preferred's best). Without the fold at 0.25 it no longer does (0.92 is within 10 % of 1),
+// so that fold's error is the preferred's, 1; without either other fold it still wins. The
+// factor: sqrt((1 + 2 * 0.92^2) / (0.3^2 + 2 * 0.92^2)) = 1.22899.
 TEST(PredictionError, AutoCalibratedOnItsChoiceByHand) {
-  const auto candidate = [](std::vector<double> values, std::vector<double> sigmas) {
+  const auto candidate = [](std::vector<double> values) {
     fit::Scored r;
     r.values = std::move(values);
     r.held_x = {0.25, 0.5, 0.75};
-    r.sigmas = std::move(sigmas);
     return r;
   };
   std::vector<fit::Scored> candidates;
-  candidates.push_back(candidate({1, 1, 1}, {2, 2, 2}));
-  candidates.push_back(candidate({0.3, 0.92, 0.92}, {1, 1, 1}));
+  candidates.push_back(candidate({1, 1, 1}));
+  candidates.push_back(candidate({0.3, 0.92, 0.92}));
   const std::vector<bool> no_miss(2, false);
-  const double expected =
-      std::sqrt((1 + 2 * 0.92 * 0.92) / 3) / std::sqrt((0.3 * 0.3 + 2 * 0.92 * 0.92) / 3);
+  const double expected = std::sqrt((1 + 2 * 0.92 * 0.92) / (0.3 * 0.3 + 2 * 0.92 * 0.92));
+  EXPECT_NEAR(expected, 1.22899, 1e-5);
   EXPECT_NEAR(fit::ChoiceCalibrationFactor(candidates, no_miss, 1), expected, 1e-12);
-  // Each fold's ratio is over the chosen one's sigma there: halving the sigma at 0.25
-  // doubles both readings there, sqrt((4 + 2 * 0.92^2) / (0.36 + 2 * 0.92^2)).
-  candidates[1].sigmas[0] = 0.5;
-  EXPECT_NEAR(fit::ChoiceCalibrationFactor(candidates, no_miss, 1),
-              std::sqrt((4 + 2 * 0.92 * 0.92) / (0.36 + 2 * 0.92 * 0.92)), 1e-12);
   // Every fold leads to the same choice: 1 (never below).
   candidates[1].values = {0.5, 0.5, 0.5};
   EXPECT_EQ(fit::ChoiceCalibrationFactor(candidates, no_miss, 1), 1.0);
@@ -398,7 +406,6 @@ TEST(PredictionError, AutoCalibratedOnItsChoiceByHand) {
   for (fit::Scored& r : candidates) {
     r.values.resize(1);
     r.held_x.resize(1);
-    r.sigmas.resize(1);
   }
   EXPECT_EQ(fit::ChoiceCalibrationFactor(candidates, no_miss, 1), 1.0);
 }

@@ -94,7 +94,6 @@ void ScoreFolds(const std::string& method, const std::vector<Fold>& folds,
       sum += v;
       r->values.push_back(v);
       r->held_x.push_back(f.x);
-      r->sigmas.push_back(f.sigma);
       score.max = score.folds == 0 ? v : std::max(score.max, v);
       ++score.folds;
     }

@@ -4,7 +4,6 @@
 #ifndef ALLOYCOLOR_FIT_SRC_FOLDS_H_
 #define ALLOYCOLOR_FIT_SRC_FOLDS_H_
 
-#include <limits>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -25,9 +24,8 @@ namespace alloycolor::fit {
 struct Scored {
   std::unique_ptr<AlloyModel> model;  // null where it could not be built or scored
   MethodScore score;
-  // Each held-out sample's score, in the folds' order; beside it, its composition and the
-  // fold model's uncalibrated one-sigma colour there (Fold::sigma).
-  std::vector<double> values, held_x, sigmas;
+  // Each held-out sample's score, in the folds' order, and beside it its composition.
+  std::vector<double> values, held_x;
   std::string metric;
 };
 
@@ -35,7 +33,7 @@ struct FitMemo {
   struct Remembered {
     nlohmann::json model;
     MethodScore score;
-    std::vector<double> values, held_x, sigmas;
+    std::vector<double> values, held_x;
     std::string metric;
   };
   std::mutex mutex;
@@ -58,9 +56,6 @@ struct Fold {
   std::string error;  // why model is null
   std::vector<const Sample*> held;
   std::vector<double> compositions;  // of the fold's training samples
-  // The one-sigma CIEDE2000 at x of the fold's uncalibrated prediction error (its scale from
-  // the other folds), which its error calibrates; NaN where none was estimated.
-  double sigma = std::numeric_limits<double>::quiet_NaN();
 };
 
 // The method built without each of ErrorFolds in turn, in parallel; `model` is the one
@@ -74,7 +69,7 @@ std::vector<Fold> FitFolds(const MethodInfo& method, const Dataset& dataset,
 
 // The folds' held-out samples scored as `validate` scores them (color/sample_error.h):
 // CIEDE2000 at normal incidence, or the reflectance RMS for data without colour; the mean
-// over them in r->score, each one in r->values (with held_x and sigmas), r->metric which.
+// over them in r->score, each one in r->values (with held_x), r->metric which.
 void ScoreFolds(const std::string& method, const std::vector<Fold>& folds,
                 const color::Colorimeter& colorimeter, Scored* r);
 
@@ -113,10 +108,11 @@ inline constexpr double kInSampleMissReflectance = 0.01;
 // auto's one-sigma calibrated on the errors of its choice, not only of the method chosen
 // (selection.cc): the method that wins on the folds is the one whose folds happened to go
 // well, so the calibration on its own folds is optimistic. Each fold's held-out error is
-// taken from the candidate that auto's rule chooses without that fold, over the chosen
-// candidate's uncalibrated one-sigma there (Scored::sigmas); the factor is the calibration
-// from those ratios over the calibration from the chosen candidate's own (SigmaCalibration),
-// and at least 1. 1 with fewer than two folds or where every fold leads to the chosen one.
+// taken from the candidate that auto's rule chooses without that fold; as the calibration is
+// the folds' squared errors over their squared sigmas, summed (SigmaCalibration), the one
+// from those errors over the chosen candidate's own is sqrt(sum of the choices' squared
+// errors / sum of its own), the factor, at least 1. 1 with fewer than two folds or where
+// every fold leads to the chosen one.
 // `misses_end`: per candidate, whether it contradicts an end sample (BuildAuto).
 double ChoiceCalibrationFactor(const std::vector<Scored>& candidates,
                                const std::vector<bool>& misses_end, size_t chosen);

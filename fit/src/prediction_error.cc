@@ -301,12 +301,12 @@ PredictionError FoldPredictionError(const MethodInfo& method, std::vector<Fold>&
   error.reference_gap = reference_gap;
   error.gap_exponent = gap_exponent;
   error.folds = static_cast<int>(done.size());
-  // Calibration on colour: the folds' observed / predicted one-sigma CIEDE2000, each
-  // fold's sigma from the scale of the other folds (cross-fitted: a fold's own error in
-  // its scale would flatter the ratio, by half with two folds).
+  // Calibration on colour: the folds' observed against predicted one-sigma CIEDE2000
+  // (SigmaCalibration), each fold's sigma from the scale of the other folds, so that its
+  // own error does not enter it.
   if (settings.colorimeter != nullptr && CoversVisible(lo, hi)) {
     const color::Colorimeter& cm = *settings.colorimeter;
-    std::vector<double> log_ratios;
+    std::vector<double> observed, predicted_sigma;
     for (const FoldErrors& fe : errors) {
       Fold& f = *fe.fold;
       PredictionError fold_error = error;
@@ -321,17 +321,21 @@ PredictionError FoldPredictionError(const MethodInfo& method, std::vector<Fold>&
       const double x = f.held.front()->x_atomic;
       const double sigma = color::DeltaE00Sigma(cm, *f.model, x, 0.0);
       if (!(sigma > 0) || !std::isfinite(sigma)) continue;
-      f.sigma = sigma;
       const color::Lab predicted = color::LabFromXYZ(
           color::MaterialXYZ(cm, color::IndexOnGrid(cm, *f.model, x), 0.0), cm.White());
       for (const Sample* s : f.held) {
         const color::Lab truth = color::LabFromXYZ(
             color::MaterialXYZ(cm, color::IndexOnGrid(cm, s->nk), 0.0), cm.White());
-        const double ratio = color::DeltaE00(truth, predicted) / sigma;
-        if (ratio > 0 && std::isfinite(ratio)) log_ratios.push_back(std::log(ratio));
+        const double e = color::DeltaE00(truth, predicted);
+        if (!std::isfinite(e)) continue;
+        observed.push_back(e);
+        predicted_sigma.push_back(sigma);
       }
     }
-    if (!log_ratios.empty()) error.calibration = SigmaCalibration(log_ratios);
+    if (!observed.empty()) {
+      error.calibration =
+          SigmaCalibration(observed, predicted_sigma, static_cast<int>(errors.size()));
+    }
   }
   return error;
 }
@@ -386,13 +390,27 @@ void CarryPredictionError(const Dataset& dataset, PredictionError error, AlloyMo
   model->set_prediction_error(std::move(error));
 }
 
-double SigmaCalibration(const std::vector<double>& log_ratios) {
-  if (log_ratios.empty()) return 1;
-  // The one-sigma is the RMS colour difference of the draws: the factor makes the folds'
-  // observed / predicted ratios RMS 1.
-  double sum_sq = 0;
-  for (double v : log_ratios) sum_sq += std::exp(2 * std::clamp(v, -20.0, 20.0));
-  return std::clamp(std::sqrt(sum_sq / log_ratios.size()), 1e-3, 1e3);
+double SigmaCalibration(const std::vector<double>& errors, const std::vector<double>& sigmas,
+                        int folds) {
+  // The one-sigma is the RMS colour difference of the draws: the folds' sum of squared
+  // errors over that of their sigmas. A ratio of sums, not a mean of ratios: with two
+  // folds, each sigma from the other fold's error, the ratios are about e1 / e2 and
+  // e2 / e1, whose squares' mean grows without bound as the two errors part, though the
+  // errors' scale is known no worse.
+  double errors_sq = 0, sigmas_sq = 0;
+  for (size_t k = 0; k < std::min(errors.size(), sigmas.size()); ++k) {
+    if (!std::isfinite(errors[k]) || !(sigmas[k] > 0) || !std::isfinite(sigmas[k])) continue;
+    errors_sq += errors[k] * errors[k];
+    sigmas_sq += sigmas[k] * sigmas[k];
+  }
+  if (!(sigmas_sq > 0)) return 1;
+  // The scale is estimated from `folds` errors: a new error over it is Student's t with
+  // that many degrees of freedom, not normal, and the one-sigma is t's 84.1 % point (where
+  // the normal's is 1): 1 + 1 / (2 k) + 1 / (4 k^2), Cornish and Fisher's expansion to the
+  // second order (1.31 for two folds, against 1.32 exactly). One fold sets its own sigma.
+  const double k = folds;
+  const double t = folds >= 2 ? 1 + 1 / (2 * k) + 1 / (4 * k * k) : 1.0;
+  return std::clamp(t * std::sqrt(errors_sq / sigmas_sq), 1e-3, 1e3);
 }
 
 void EstimatePredictionError(const MethodInfo& method, std::vector<Fold>& fitted,

@@ -73,14 +73,14 @@ struct FitSettings {
 // samples as `validate` scores them (mean CIEDE2000 at normal incidence, or reflectance RMS
 // for data without colour); the first method in the registry's order of preference
 // (MethodTraits::auto_rank: smooth, eps-pchip, eps-linear, eps-spline, paper, physical)
-// whose mean lies within 10 % of the lowest, or above it by no more than one standard error
-// of their fold-by-fold differences (from two folds), wins: a rival displaces the default
-// regression only on evidence the folds can give. The folds cannot hold out the two end
-// samples: among the methods the rule accepts, one that misses an end sample by more than
-// ΔE00 1 (reflectance RMS 0.01) and by more than its mean fold error gives way to one that
-// does not. The
-// physical model is not scored where its folds cannot fit its composition degree (three
-// compositions: degree 2, its folds' two samples only a line). With three compositions
+// whose mean lies within 10 % of the lowest, or whose best fold is no worse than the
+// lowest's worst, wins: a rival displaces the default regression only on evidence the folds
+// can give, a lead on every fold that no reshuffling of them could undo. The folds cannot
+// hold out the two end samples: among the methods the rule accepts, one that misses an end
+// sample by more than ΔE00 1 (reflectance RMS 0.01) and by more than its mean fold error
+// gives way to one that does not. The physical model is not scored where its folds cannot
+// fit its composition degree (three compositions: degree 2, its folds' two samples only a
+// line). With three compositions
 // the one fold predicts the middle from the ends, where every interpolation is a straight
 // line, so it cannot compare the curves delivered: smooth is chosen (unless it failed).
 // With fewer, nothing can be held out and the first in order is chosen (with two samples every
@@ -89,10 +89,14 @@ inline constexpr const char* kAutoMethod = "auto";
 std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings& settings);
 
 // The calibration of a prediction error's one-sigma colour uncertainty from its folds'
-// log ratios of observed to uncalibrated predicted CIEDE2000 (docs/model-format.md): the
-// factor that makes the ratios' root mean square 1, as the one-sigma is the draws' RMS
-// colour difference. 1 for no folds; clamped to 1e-3..1e3.
-double SigmaCalibration(const std::vector<double>& log_ratios);
+// observed CIEDE2000 errors and uncalibrated predicted one-sigmas (docs/model-format.md):
+// sqrt(sum of squared errors / sum of squared sigmas), as the one-sigma is the draws' RMS
+// colour difference, times 1 + 1 / (2 k) + 1 / (4 k^2) from k = `folds` of two or more
+// (Student's t with k degrees of freedom at its one-sigma point: the scale is estimated
+// from k errors); pairs whose sigma is not positive are left out. 1 for none; clamped to
+// 1e-3..1e3.
+double SigmaCalibration(const std::vector<double>& errors, const std::vector<double>& sigmas,
+                        int folds);
 
 // Attaches the built-in methods' builders to their registry entries (once; BuildModel does
 // it before building).

@@ -318,10 +318,6 @@ class Model:
     lambda_min_nm = property(lambda self: self._core.lambda_min_nm)
     lambda_max_nm = property(lambda self: self._core.lambda_max_nm)
     warnings = property(lambda self: list(self._core.warnings))
-    precision = property(lambda self: dict(self._core.precision),
-                         doc='{"n", "k"}: the standard deviations the manifest states for a '
-                             'measured n and k (0: not stated; the printed digits then set the '
-                             "error bars' floor)")
     has_uncertainty = property(lambda self: self._core.has_uncertainty)
     training_x = property(lambda self: self._core.training_x)
 

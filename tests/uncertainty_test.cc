@@ -410,5 +410,28 @@ TEST(PredictionError, AutoCalibratedOnItsChoiceByHand) {
   EXPECT_EQ(fit::ChoiceCalibrationFactor(candidates, no_miss, 1), 1.0);
 }
 
+// auto's rule needs an outright lead, seen through the choice factor. Folds at 0.25, 0.5,
+// 0.75; the preferred candidate errs 1, 0.4, 0.4, the other 0.9, 0.3, 0.3 (each fold 0.1
+// lower, so a paired test finds it ahead on every fold). Without the fold at 0.25 the other
+// beats the preferred outright (0.3 < 0.4): its error there, 0.9, stands. Without the fold
+// at 0.5 (or 0.75) the other's worst fold, 0.9, is above the preferred's best, 0.4: the
+// preferred is kept, and its 0.4 stands. For the other as delivered: sqrt((0.81 + 0.16 +
+// 0.16) / (0.81 + 0.09 + 0.09)) = 1.06837; a paired rule would keep the other every time,
+// giving 1.
+TEST(PredictionError, AutoNeedsAnOutrightLead) {
+  const auto candidate = [](std::vector<double> values) {
+    fit::Scored r;
+    r.values = std::move(values);
+    r.held_x = {0.25, 0.5, 0.75};
+    return r;
+  };
+  std::vector<fit::Scored> candidates;
+  candidates.push_back(candidate({1, 0.4, 0.4}));
+  candidates.push_back(candidate({0.9, 0.3, 0.3}));
+  const std::vector<bool> no_miss(2, false);
+  EXPECT_NEAR(fit::ChoiceCalibrationFactor(candidates, no_miss, 1), std::sqrt(1.13 / 0.99), 1e-12);
+  EXPECT_NEAR(std::sqrt(1.13 / 0.99), 1.06837, 1e-5);
+}
+
 }  // namespace
 }  // namespace alloycolor

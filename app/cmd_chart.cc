@@ -43,13 +43,7 @@ void Run(const ChartOptions& o) {
   }
   const color::Colorimeter colorimeter = LoadColorimeter(o.illuminant, o.observer);
   const auto model = o.source.Load(o.quiet);
-  const double from = o.from_text.empty()
-                          ? model->x_min()
-                          : ParseCompositionArg(o.from_text, model->system(), "--from");
-  const double to =
-      o.to_text.empty() ? model->x_max() : ParseCompositionArg(o.to_text, model->system(), "--to");
-  CheckComposition(*model, from, o.source.extrapolate);
-  CheckComposition(*model, to, o.source.extrapolate);
+  const auto [from, to] = CompositionRange(*model, o.from_text, o.to_text, o.source.extrapolate);
   const bool weight =
       o.labels.empty() ? model->composition() == "weight_fraction_a" : o.labels == "weight";
   const CompositionChart chart =

@@ -172,13 +172,7 @@ void Run(const SweepOptions& o) {
     throw Error("--from/--to: give one composition each");
   }
   const auto model = o.source.Load(o.quiet);
-  const double from = o.from_text.empty()
-                          ? model->x_min()
-                          : ParseCompositionArg(o.from_text, model->system(), "--from");
-  const double to =
-      o.to_text.empty() ? model->x_max() : ParseCompositionArg(o.to_text, model->system(), "--to");
-  CheckComposition(*model, from, o.source.extrapolate);
-  CheckComposition(*model, to, o.source.extrapolate);
+  const auto [from, to] = CompositionRange(*model, o.from_text, o.to_text, o.source.extrapolate);
 
   // The model is named by its file or data set (the library's message names the method).
   const std::string source = o.source.model_path.empty() ? o.source.data_dir : o.source.model_path;

@@ -411,6 +411,17 @@ void CheckComposition(const AlloyModel& model, double x_atomic, bool extrapolate
   if (!extrapolate) model.CheckInRange(x_atomic);
 }
 
+std::pair<double, double> CompositionRange(const AlloyModel& model, const std::string& from_text,
+                                           const std::string& to_text, bool extrapolate) {
+  const double from =
+      from_text.empty() ? model.x_min() : ParseCompositionArg(from_text, model.system(), "--from");
+  const double to =
+      to_text.empty() ? model.x_max() : ParseCompositionArg(to_text, model.system(), "--to");
+  CheckComposition(model, from, extrapolate);
+  CheckComposition(model, to, extrapolate);
+  return {from, to};
+}
+
 std::string DescribeComposition(double x_atomic, const AlloySystem& system) {
   char text[160];
   const std::string a = system.a.symbol;

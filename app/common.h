@@ -7,6 +7,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "alloycolor/color/colorimetry.h"
@@ -125,6 +126,10 @@ void CheckOutputFolder(const std::string& path, const std::string& option);
 
 // Checks x against the model's range unless extrapolation is allowed.
 void CheckComposition(const AlloyModel& model, double x_atomic, bool extrapolate);
+// --from and --to as atomic fractions (the model's range where empty), each checked
+// against the model's range unless extrapolation is allowed.
+std::pair<double, double> CompositionRange(const AlloyModel& model, const std::string& from_text,
+                                           const std::string& to_text, bool extrapolate);
 
 // A composition as the program prints it: "0.7512 (75.12 at% Au, 84.6 wt% Au, 20.3 k)"
 // (karat for gold alloys only), and the same as JSON fields x_atomic, at_percent,

@@ -9,18 +9,8 @@
 #include "fuzz_util.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  using namespace alloycolor;
-  const std::string path = fuzz::WriteInput(data, size, "input.csv");
-  try {
-    std::vector<std::string> warnings;
-    const NkSpectrum nk = ReadNkCsv(path, &warnings);
-    fuzz::Require(nk.source == path, "spectrum source is not the file");
-    for (const std::string& w : warnings) {
-      fuzz::Require(w.find('\n') == std::string::npos, "warning spans lines: " + w);
-    }
-    fuzz::CheckSpectrum(nk);
-  } catch (const Error& e) {
-    fuzz::CheckMessage(e, path);
-  }
-  return 0;
+  return alloycolor::fuzz::FuzzSpectrumReader(
+      data, size, "input.csv", [](const std::string& path, std::vector<std::string>* warnings) {
+        return alloycolor::ReadNkCsv(path, warnings);
+      });
 }

@@ -134,6 +134,27 @@ inline void CheckSpectrum(const NkSpectrum& nk) {
   }
 }
 
+// One input to a spectrum reader (`read`: path, warnings -> NkSpectrum), written as
+// WorkDir()/name: what it accepts keeps its source and passes CheckSpectrum, its warnings
+// and errors are one line each, and an error names the file.
+template <typename Reader>
+int FuzzSpectrumReader(const std::uint8_t* data, std::size_t size, const std::string& name,
+                       Reader read) {
+  const std::string path = WriteInput(data, size, name);
+  try {
+    std::vector<std::string> warnings;
+    const NkSpectrum nk = read(path, &warnings);
+    Require(nk.source == path, "spectrum source is not the file");
+    for (const std::string& w : warnings) {
+      Require(w.find('\n') == std::string::npos, "warning spans lines: " + w);
+    }
+    CheckSpectrum(nk);
+  } catch (const Error& e) {
+    CheckMessage(e, path);
+  }
+  return 0;
+}
+
 // A model a reader accepted: finite eps over its whole range at its ends and middle, and a
 // finite colour when it covers the visible.
 inline void CheckModel(const AlloyModel& model, const std::string& what) {

@@ -341,6 +341,23 @@ TEST_F(YamlStructureTest, MissingDataIsRefused) {
               HasSubstr(no_rows + ":2: DATA entry 1 has no 'data'"));
 }
 
+// One document per file: a second is refused at its line, an empty one after it is
+// nothing. A line starting with a comma made yaml-cpp 0.7's LoadAll read empty documents
+// without end (found by the YAML fuzzer; the reader asks for the second document once).
+TEST_F(YamlStructureTest, OneDocumentAndNoEndlessEmptyOnes) {
+  const std::string body = "DATA:\n  - type: tabulated nk\n    data: |\n        0.5 1 2\n"
+                           "        0.6 1 2\n";
+  const std::string two = Write("two.yml", body + "---\nDATA: []\n");
+  EXPECT_THAT(ErrorOf([&] { ReadNkFile(two); }),
+              HasSubstr(two + ":6: a second YAML document ('---')"));
+  EXPECT_EQ(ReadNkFile(Write("empty_second.yml", body + "---\n")).lambda_nm.size(), 2u);
+  for (const std::string text : {",\n", "# a comment\n ,\n0.5 1 2\n"}) {
+    const std::string path = Write("comma.yml", text);
+    EXPECT_THAT(ErrorOf([&] { ReadNkFile(path); }),
+                HasSubstr(path + ": not a refractiveindex.info file"));
+  }
+}
+
 TEST_F(YamlStructureTest, InvalidYamlNamesFileAndLine) {
   const std::string path = Write("syntax.yml", "DATA:\n  - type: tabulated nk\n    data: [1, 2\n");
   const std::string message = ErrorOf([&] { ReadNkFile(path); });

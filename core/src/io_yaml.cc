@@ -1,9 +1,11 @@
+#include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <cstddef>
 #include <exception>
 #include <set>
+#include <sstream>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -169,6 +171,36 @@ void RejectDuplicateYamlKeys(const std::string& path, const YAML::Node& node, in
   }
 }
 
+// Where a YAML stream's second document starts, and whether it holds anything (an empty
+// document is a null node).
+struct DocumentStarts : YAML::EventHandler {
+  int documents = 0;
+  YAML::Mark second;
+  bool content_of_second = false;
+
+  void OnDocumentStart(const YAML::Mark& mark) override {
+    if (++documents == 2) second = mark;
+  }
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnAlias(const YAML::Mark&, YAML::anchor_t) override { Holds(); }
+  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                const std::string&) override {
+    Holds();
+  }
+  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                       YAML::EmitterStyle::value) override {
+    Holds();
+  }
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                  YAML::EmitterStyle::value) override {
+    Holds();
+  }
+  void OnMapEnd() override {}
+  void Holds() { content_of_second = content_of_second || documents == 2; }
+};
+
 // The DATA entries of a refractiveindex.info file; list_at names the DATA line.
 std::vector<Entry> YamlEntries(const std::string& path, const std::string& text,
                                std::string* list_at_out) {
@@ -185,12 +217,18 @@ std::vector<Entry> YamlEntries(const std::string& path, const std::string& text,
   }
   YAML::Node root;
   try {
-    const std::vector<YAML::Node> documents = YAML::LoadAll(text);
-    if (documents.size() > 1) {
-      Fail(path + ":" + std::to_string(MarkLine(documents[1].Mark())) +
+    // The first document alone: yaml-cpp 0.7's LoadAll never returns on some malformed
+    // streams (a line that starts with a comma: each further document is an empty one that
+    // reads nothing), so the parser is asked for the second once, not until it is done.
+    root = YAML::Load(text);
+    std::istringstream stream(text);
+    YAML::Parser parser(stream);
+    DocumentStarts starts;
+    if (parser.HandleNextDocument(starts) && parser.HandleNextDocument(starts) &&
+        starts.content_of_second) {
+      Fail(path + ":" + std::to_string(MarkLine(starts.second)) +
            ": a second YAML document ('---'); a refractiveindex.info file holds one");
     }
-    if (!documents.empty()) root = documents.front();
   } catch (const YAML::Exception& e) {
     Fail((MarkLine(e.mark) > 0 ? path + ":" + std::to_string(MarkLine(e.mark)) : path) +
          ": invalid YAML: " + e.msg);

@@ -345,8 +345,9 @@ TEST_F(YamlStructureTest, MissingDataIsRefused) {
 // nothing. A line starting with a comma made yaml-cpp 0.7's LoadAll read empty documents
 // without end (found by the YAML fuzzer; the reader asks for the second document once).
 TEST_F(YamlStructureTest, OneDocumentAndNoEndlessEmptyOnes) {
-  const std::string body = "DATA:\n  - type: tabulated nk\n    data: |\n        0.5 1 2\n"
-                           "        0.6 1 2\n";
+  const std::string body =
+      "DATA:\n  - type: tabulated nk\n    data: |\n        0.5 1 2\n"
+      "        0.6 1 2\n";
   const std::string two = Write("two.yml", body + "---\nDATA: []\n");
   EXPECT_THAT(ErrorOf([&] { ReadNkFile(two); }),
               HasSubstr(two + ":6: a second YAML document ('---')"));

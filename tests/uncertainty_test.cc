@@ -379,6 +379,14 @@ TEST(PredictionError, CalibrationWidensToStudentsTOneSigma) {
   }
 }
 
+// A candidate of auto's rule scored on three folds, at 0.25, 0.5 and 0.75.
+fit::Scored ScoredOnThreeFolds(std::vector<double> values) {
+  fit::Scored r;
+  r.values = std::move(values);
+  r.held_x = {0.25, 0.5, 0.75};
+  return r;
+}
+
 // auto's calibration on its choice by hand. Three folds at 0.25, 0.5, 0.75; the preferred
 // candidate errs 1, 1, 1, the other 0.3, 0.92, 0.92. On all folds the other wins (mean
 // 0.713, more than 10 % below the preferred's 1, and its worst fold, 0.92, below the
@@ -386,15 +394,9 @@ TEST(PredictionError, CalibrationWidensToStudentsTOneSigma) {
 // so that fold's error is the preferred's, 1; without either other fold it still wins. The
 // factor: sqrt((1 + 2 * 0.92^2) / (0.3^2 + 2 * 0.92^2)) = 1.22899.
 TEST(PredictionError, AutoCalibratedOnItsChoiceByHand) {
-  const auto candidate = [](std::vector<double> values) {
-    fit::Scored r;
-    r.values = std::move(values);
-    r.held_x = {0.25, 0.5, 0.75};
-    return r;
-  };
   std::vector<fit::Scored> candidates;
-  candidates.push_back(candidate({1, 1, 1}));
-  candidates.push_back(candidate({0.3, 0.92, 0.92}));
+  candidates.push_back(ScoredOnThreeFolds({1, 1, 1}));
+  candidates.push_back(ScoredOnThreeFolds({0.3, 0.92, 0.92}));
   const std::vector<bool> no_miss(2, false);
   const double expected = std::sqrt((1 + 2 * 0.92 * 0.92) / (0.3 * 0.3 + 2 * 0.92 * 0.92));
   EXPECT_NEAR(expected, 1.22899, 1e-5);
@@ -419,15 +421,9 @@ TEST(PredictionError, AutoCalibratedOnItsChoiceByHand) {
 // 0.16) / (0.81 + 0.09 + 0.09)) = 1.06837; a paired rule would keep the other every time,
 // giving 1.
 TEST(PredictionError, AutoNeedsAnOutrightLead) {
-  const auto candidate = [](std::vector<double> values) {
-    fit::Scored r;
-    r.values = std::move(values);
-    r.held_x = {0.25, 0.5, 0.75};
-    return r;
-  };
   std::vector<fit::Scored> candidates;
-  candidates.push_back(candidate({1, 0.4, 0.4}));
-  candidates.push_back(candidate({0.9, 0.3, 0.3}));
+  candidates.push_back(ScoredOnThreeFolds({1, 0.4, 0.4}));
+  candidates.push_back(ScoredOnThreeFolds({0.9, 0.3, 0.3}));
   const std::vector<bool> no_miss(2, false);
   EXPECT_NEAR(fit::ChoiceCalibrationFactor(candidates, no_miss, 1), std::sqrt(1.13 / 0.99), 1e-12);
   EXPECT_NEAR(std::sqrt(1.13 / 0.99), 1.06837, 1e-5);

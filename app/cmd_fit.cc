@@ -101,18 +101,17 @@ void ReportFit(const AlloyModel& model, double seconds, bool verbose) {
                    stats.selection.metric.c_str());
       for (const MethodScore& m : stats.selection.scores) {
         if (m.error.empty()) {
-          char share[32] = "";
-          if (m.weight > 0) std::snprintf(share, sizeof share, "  weight %.3f", m.weight);
           std::fprintf(stderr,
                        "alloycolor:   %-11s mean %.4g, worst %.4g (%d folds; ends %.3g)%s\n",
-                       m.method.c_str(), m.mean, m.max, m.folds, m.end_miss, share);
+                       m.method.c_str(), m.mean, m.max, m.folds, m.end_miss,
+                       m.method == model.method() ? "  <- chosen" : "");
         } else {
           std::fprintf(stderr, "alloycolor:   %-11s not scored: %s\n", m.method.c_str(),
                        m.error.c_str());
         }
       }
     }
-    std::fprintf(stderr, "alloycolor: auto: %s\n", stats.selection.reason.c_str());
+    std::fprintf(stderr, "alloycolor: auto chose %s\n", stats.selection.reason.c_str());
   }
   if (stats.present()) {
     const std::string shape = stats.details.contains("space")

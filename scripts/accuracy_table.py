@@ -100,7 +100,7 @@ def main():
         picked = [c for split in report["splits"] for c in split.get("choices", {}).values()]
         if picked:
             choices.append(f"- {label}: " + ", ".join(str(p) for p in picked))
-    lines += ["", "What `auto` delivered in each split:", ""] + choices
+    lines += ["", "What `auto` chose in each split:", ""] + choices
 
     lines += ["", "## Each method at its own samples", "",
               "Fitted to all samples of each set; the largest CIEDE2000 between the model and "

@@ -1,5 +1,5 @@
-// The paper baseline and eps-linear models, the blend of models, and the JSON model file,
-// against hand calculations of eq. 7, 11, 12 and the shipped data.
+// The paper baseline and eps-linear models, and the JSON model file, against hand
+// calculations of eq. 7, 11, 12 and the shipped data.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,7 +15,6 @@
 #include "alloycolor/core/io.h"
 #include "alloycolor/core/units.h"
 #include "alloycolor/model/alloy_model.h"
-#include "alloycolor/model/blend_model.h"
 #include "alloycolor/model/interpolation.h"
 #include "alloycolor/model/sample_models.h"
 #include "test_util.h"
@@ -241,74 +240,6 @@ TEST(SampleModels, CubicBaselinesInterpolateEps) {
   // A model file round trip keeps the method.
   EXPECT_EQ(ModelFromJson(pchip.ToJson(), "pchip")->method(), "eps-pchip");
   EXPECT_EQ(ModelFromJson(spline.ToJson(), "spline")->method(), "eps-spline");
-}
-
-// The blend by hand: a quarter eps-linear and three quarters eps-pchip on Au-Ag, each
-// member's eps weighted, at compositions between the samples and at a sample (where both
-// members, and so the blend, give the sample's own eps); bound to a grid the same, and
-// read back from its file the same to the last bit.
-TEST(BlendModel, WeighsItsMembersEps) {
-  const Dataset data = LoadDataset(DataDir() + "/Au-Ag");
-  std::vector<BlendModel::Member> members;
-  members.push_back({0.25, std::make_unique<SampleModel>(SampleModel::Kind::kEpsLinear, data)});
-  members.push_back({0.75, std::make_unique<SampleModel>(SampleModel::Kind::kEpsPchip, data)});
-  const SampleModel linear(SampleModel::Kind::kEpsLinear, data);
-  const SampleModel pchip(SampleModel::Kind::kEpsPchip, data);
-  const BlendModel blend(data, std::move(members));
-  EXPECT_EQ(blend.method(), "blend");
-  const std::vector<double> grid = UniformGrid(380, 780, 9);
-  const auto bound = blend.Bind(grid);
-  const auto back = ModelFromJson(blend.ToJson(), "mem");
-  for (double x : {0.05, 0.33, 0.5, 0.75}) {
-    const auto a = linear.Permittivity(x, grid), b = pchip.Permittivity(x, grid);
-    const auto e = blend.Permittivity(x, grid);
-    const auto bound_eps = bound->Permittivity(x);
-    for (size_t j = 0; j < grid.size(); ++j) {
-      const std::complex<double> expected = 0.25 * a[j] + 0.75 * b[j];
-      EXPECT_NEAR(std::abs(e[j] - expected), 0, 1e-12 * std::abs(expected)) << x;
-      EXPECT_NEAR(std::abs(std::complex<double>(bound_eps[j].re, bound_eps[j].im) - expected), 0,
-                  1e-12 * std::abs(expected));
-    }
-    EXPECT_EQ(back->Permittivity(x, grid), e);
-  }
-  const Sample& s = data.samples[5];
-  for (double l : {450.0, 600.0}) {
-    const std::complex<double> n = NkAt(s.nk, l);
-    EXPECT_NEAR(std::abs(blend.Permittivity(s.x_atomic, {l})[0] - n * n), 0, 1e-9 * std::norm(n));
-  }
-  EXPECT_EQ(ModelFileText(*back), ModelFileText(blend));
-}
-
-// A damaged blend file names its field: weights that are not positive or do not sum to 1,
-// a single member, a member nested as a blend (no file nests without bound), a member of
-// another alloy, a damaged member (its own field under the member's).
-TEST(BlendModel, DamagedFilesNameTheCulprit) {
-  const Dataset data = LoadDataset(DataDir() + "/Au-Ag");
-  std::vector<BlendModel::Member> members;
-  members.push_back({0.5, std::make_unique<SampleModel>(SampleModel::Kind::kEpsLinear, data)});
-  members.push_back({0.5, std::make_unique<SampleModel>(SampleModel::Kind::kPaper, data)});
-  const nlohmann::json good = BlendModel(data, std::move(members)).ToJson();
-  nlohmann::json doc = good;
-  doc["parameters"]["members"][0]["weight"] = -0.5;
-  testing::ExpectModelFileError(doc, "parameters.members[0].weight");
-  doc = good;
-  doc["parameters"]["members"][1]["weight"] = 0.25;
-  testing::ExpectModelFileError(doc, "sum to 0.75");
-  doc = good;
-  doc["parameters"]["members"].erase(1);
-  testing::ExpectModelFileError(doc, "two members at least");
-  doc = good;
-  doc["parameters"]["members"][1]["model"] = good;
-  testing::ExpectModelFileError(doc, "parameters.members[1].model: a blend cannot be a member");
-  doc = good;
-  doc["parameters"]["members"][1]["model"]["system"] = {{"a", "Cu"}, {"b", "Zn"}};
-  testing::ExpectModelFileError(doc, "another alloy system");
-  doc = good;
-  doc["parameters"]["members"][0]["model"]["parameters"]["samples"][0]["n"] = "oops";
-  testing::ExpectModelFileError(doc, "parameters.members[0].model: parameters.samples[0]");
-  doc = good;
-  doc["parameters"]["members"] = "all";
-  testing::ExpectModelFileError(doc, "parameters.members");
 }
 
 }  // namespace

@@ -8,21 +8,17 @@
 #include <cmath>
 #include <complex>
 #include <functional>
-#include <map>
 
 #include "alloycolor/color/colorimetry.h"
 #include "alloycolor/color/material_color.h"
-#include "alloycolor/color/sample_error.h"
 #include "alloycolor/core/dataset.h"
 #include "alloycolor/core/error.h"
-#include "alloycolor/core/grid.h"
 #include "alloycolor/core/io.h"
 #include "alloycolor/fit/methods.h"
-#include "alloycolor/model/blend_model.h"
 #include "alloycolor/model/optics.h"
 #include "alloycolor/model/sample_models.h"
 #include "test_util.h"
-// FoldWeights is internal to the fit library.
+// ChoiceCalibrationFactor is internal to the fit library.
 #include "../fit/src/folds.h"
 
 namespace alloycolor {
@@ -148,59 +144,24 @@ TEST(PredictionError, FitsOfThreeCompositionsOrMoreCarryItAndTheFileKeepsIt) {
   EXPECT_FALSE(fit::BuildModel("eps-pchip", all, settings)->HasUncertainty());
 }
 
-// auto on Werner's Cu-Zn delivers a blend, each member weighed by 1 / its leave-one-out
-// mean squared colour error. The folds written again here, independently: each method fitted
-// without each interior composition and scored against it (CIEDE2000 at normal incidence).
-// physical misses an end sample and gets no share; the others' shares are the normalised
-// inverse mean squares (none under 1 % here). The blend's eps is its members' weighted, each
-// member the method fitted on its own; its one-sigma is nowhere 0 between samples and its
-// folds' colour errors are covered at the calibration's level.
-TEST(PredictionError, AutoBlendsByInverseFoldMeanSquares) {
+// auto delivers the chosen method's model with its calibration times the factor for the
+// choice, and records the factor: on Werner's Cu-Zn it keeps smooth, and leaving out one of
+// its three folds lets a rival win (the factor is above 1). The chosen method fitted on its
+// own gives the calibration before the factor.
+TEST(PredictionError, AutoAppliesAndRecordsItsChoiceFactor) {
   const color::Colorimeter cm = color::Colorimeter::Load(DataDir(), "D65", 2);
   fit::FitSettings settings;
   settings.colorimeter = &cm;
   const Dataset data = LoadDataset(DataDir() + "/Cu-Zn/dataset-werner-zn.json");
-  const auto model = fit::BuildModel("auto", data, settings);
-  ASSERT_EQ(model->method(), "blend");
-  const auto& blend = dynamic_cast<const BlendModel&>(*model);
-  std::map<std::string, double> inverse;
-  double total = 0;
-  for (const char* method : {"smooth", "eps-pchip", "eps-linear", "eps-spline", "paper"}) {
-    double sum_sq = 0;
-    int count = 0;
-    for (const Sample& s : data.samples) {
-      if (s.x_atomic == 0 || s.x_atomic == 1) continue;
-      const auto fold = fit::BuildModel(method, WithoutSamples(data, {s.x_atomic}), settings);
-      const double e = color::ErrorAgainstSample(cm, *fold, s).delta_e00;
-      sum_sq += e * e;
-      ++count;
-    }
-    inverse[method] = count / sum_sq;
-    total += inverse[method];
-  }
-  std::map<std::string, double> weight;
-  for (const MethodScore& m : model->fit_summary().selection.scores) weight[m.method] = m.weight;
-  EXPECT_EQ(weight["physical"], 0.0);
-  for (const auto& [method, v] : inverse) {
-    EXPECT_NEAR(weight[method], v / total, 1e-9) << method;
-  }
-  ASSERT_EQ(blend.members().size(), 5u);
-  const std::vector<double> grid = UniformGrid(400, 700, 7);
-  for (double x : {0.3, 0.8}) {
-    std::vector<std::complex<double>> expected(grid.size(), 0.0);
-    for (const BlendModel::Member& m : blend.members()) {
-      EXPECT_NEAR(m.weight, weight[m.model->method()], 1e-12);
-      const auto alone = fit::BuildModel(m.model->method(), data, settings);
-      const auto e = alone->Permittivity(x, grid);
-      for (size_t j = 0; j < grid.size(); ++j) expected[j] += m.weight * e[j];
-    }
-    const auto e = blend.Permittivity(x, grid);
-    for (size_t j = 0; j < grid.size(); ++j) {
-      EXPECT_NEAR(std::abs(e[j] - expected[j]), 0, 1e-9 * std::abs(expected[j])) << x;
-    }
-    EXPECT_GT(color::DeltaE00Sigma(cm, *model, x, 0.0), 0.05) << x;
-  }
-  EXPECT_GT(model->prediction_error().folds, 0);
+  const auto chosen = fit::BuildModel("auto", data, settings);
+  ASSERT_EQ(chosen->method(), "smooth");
+  const auto alone = fit::BuildModel("smooth", data, settings);
+  const nlohmann::json& details = chosen->fit_summary().details;
+  ASSERT_TRUE(details.contains("calibration_times_for_the_choice"));
+  const double factor = details.at("calibration_times_for_the_choice").get<double>();
+  EXPECT_GT(factor, 1.0);
+  EXPECT_NEAR(chosen->prediction_error().calibration,
+              alone->prediction_error().calibration * factor, 1e-9);
 }
 
 // The stated precision by hand: n + i k = sqrt(-5 + 2i) (1 + x / 100) at every wavelength,
@@ -426,37 +387,46 @@ fit::Scored ScoredOnThreeFolds(std::vector<double> values) {
   return r;
 }
 
-// auto's weights by hand. Mean squares: a 1, b (0.25 + 1 + 1) / 3 = 0.75, c 100 (errs 10 on
-// every fold): 1 / 1, 1 / 0.75, 1 / 100 share as 0.4267, 0.5690, 0.0043; c's share is under
-// 1 % and dropped: 3 / 7 and 4 / 7. Without the fold at 0.25: b's mean square is 1, the
-// two share equally. A candidate that misses an end sample gets none while another does
-// not; exact ones take everything; unscored ones nothing.
-TEST(PredictionError, AutoWeightsByHand) {
+// auto's calibration on its choice by hand. Three folds at 0.25, 0.5, 0.75; the preferred
+// candidate errs 1, 1, 1, the other 0.3, 0.92, 0.92. On all folds the other wins (mean
+// 0.713, more than 10 % below the preferred's 1, and its worst fold, 0.92, below the
+// preferred's best). Without the fold at 0.25 it no longer does (0.92 is within 10 % of 1),
+// so that fold's error is the preferred's, 1; without either other fold it still wins. The
+// factor: sqrt((1 + 2 * 0.92^2) / (0.3^2 + 2 * 0.92^2)) = 1.22899.
+TEST(PredictionError, AutoCalibratedOnItsChoiceByHand) {
   std::vector<fit::Scored> candidates;
   candidates.push_back(ScoredOnThreeFolds({1, 1, 1}));
-  candidates.push_back(ScoredOnThreeFolds({0.5, 1, 1}));
-  candidates.push_back(ScoredOnThreeFolds({10, 10, 10}));
-  std::vector<bool> misses(3, false);
-  std::vector<double> w = fit::FoldWeights(candidates, misses, std::nan(""));
-  EXPECT_NEAR(w[0], 3.0 / 7, 1e-12);
-  EXPECT_NEAR(w[1], 4.0 / 7, 1e-12);
-  EXPECT_EQ(w[2], 0.0);
-  w = fit::FoldWeights(candidates, misses, 0.25);
-  EXPECT_NEAR(w[0], 0.5, 1e-12);
-  EXPECT_NEAR(w[1], 0.5, 1e-12);
-  misses[1] = true;
-  w = fit::FoldWeights(candidates, misses, std::nan(""));
-  EXPECT_NEAR(w[0], 1.0, 1e-12);
-  EXPECT_EQ(w[1], 0.0);
-  misses.assign(3, true);  // every one misses: the weights as if none did
-  EXPECT_NEAR(fit::FoldWeights(candidates, misses, std::nan(""))[1], 4.0 / 7, 1e-12);
-  misses.assign(3, false);
-  candidates[2].values = {0, 0, 0};
-  w = fit::FoldWeights(candidates, misses, std::nan(""));
-  EXPECT_EQ(w[2], 1.0);
-  EXPECT_EQ(w[0] + w[1], 0.0);
-  candidates[2].score.error = "failed on 1 of 3 folds";
-  EXPECT_EQ(fit::FoldWeights(candidates, misses, std::nan(""))[2], 0.0);
+  candidates.push_back(ScoredOnThreeFolds({0.3, 0.92, 0.92}));
+  const std::vector<bool> no_miss(2, false);
+  const double expected = std::sqrt((1 + 2 * 0.92 * 0.92) / (0.3 * 0.3 + 2 * 0.92 * 0.92));
+  EXPECT_NEAR(expected, 1.22899, 1e-5);
+  EXPECT_NEAR(fit::ChoiceCalibrationFactor(candidates, no_miss, 1), expected, 1e-12);
+  // Every fold leads to the same choice: 1 (never below).
+  candidates[1].values = {0.5, 0.5, 0.5};
+  EXPECT_EQ(fit::ChoiceCalibrationFactor(candidates, no_miss, 1), 1.0);
+  // One fold: nothing to leave out.
+  for (fit::Scored& r : candidates) {
+    r.values.resize(1);
+    r.held_x.resize(1);
+  }
+  EXPECT_EQ(fit::ChoiceCalibrationFactor(candidates, no_miss, 1), 1.0);
+}
+
+// auto's rule needs an outright lead, seen through the choice factor. Folds at 0.25, 0.5,
+// 0.75; the preferred candidate errs 1, 0.4, 0.4, the other 0.9, 0.3, 0.3 (each fold 0.1
+// lower, so a paired test finds it ahead on every fold). Without the fold at 0.25 the other
+// beats the preferred outright (0.3 < 0.4): its error there, 0.9, stands. Without the fold
+// at 0.5 (or 0.75) the other's worst fold, 0.9, is above the preferred's best, 0.4: the
+// preferred is kept, and its 0.4 stands. For the other as delivered: sqrt((0.81 + 0.16 +
+// 0.16) / (0.81 + 0.09 + 0.09)) = 1.06837; a paired rule would keep the other every time,
+// giving 1.
+TEST(PredictionError, AutoNeedsAnOutrightLead) {
+  std::vector<fit::Scored> candidates;
+  candidates.push_back(ScoredOnThreeFolds({1, 0.4, 0.4}));
+  candidates.push_back(ScoredOnThreeFolds({0.9, 0.3, 0.3}));
+  const std::vector<bool> no_miss(2, false);
+  EXPECT_NEAR(fit::ChoiceCalibrationFactor(candidates, no_miss, 1), std::sqrt(1.13 / 0.99), 1e-12);
+  EXPECT_NEAR(std::sqrt(1.13 / 0.99), 1.06837, 1e-5);
 }
 
 }  // namespace

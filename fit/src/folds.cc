@@ -22,16 +22,6 @@ std::vector<double> ErrorFolds(const Dataset& dataset) {
   return folds;
 }
 
-Fold HeldOutFold(const Dataset& dataset, const std::vector<double>& held) {
-  Fold f;
-  f.x = held.front();
-  for (const Sample& s : dataset.samples) {
-    if (std::find(held.begin(), held.end(), s.x_atomic) != held.end()) f.held.push_back(&s);
-  }
-  f.compositions = DistinctCompositions(WithoutSamples(dataset, held));
-  return f;
-}
-
 std::vector<Fold> FitFolds(const MethodInfo& method, const Dataset& dataset,
                            const FitSettings& settings, const AlloyModel& model) {
   std::vector<std::vector<double>> held;
@@ -55,15 +45,19 @@ std::vector<Fold> FitFolds(const MethodInfo& method, const Dataset& dataset,
       [&](size_t k) {
         Fold& f = folds[k];
         f.x = held[k].front();
+        const Dataset training = WithoutSamples(dataset, held[k]);
         try {
-          f.model = BuildWithFolds(method, WithoutSamples(dataset, held[k]), inner, nullptr);
+          f.model = BuildWithFolds(method, training, inner, nullptr);
         } catch (const Error& e) {
           f.error = e.what();
           return;
         }
-        Fold described = HeldOutFold(dataset, held[k]);
-        f.held = std::move(described.held);
-        f.compositions = std::move(described.compositions);
+        for (const Sample& s : dataset.samples) {
+          if (std::find(held[k].begin(), held[k].end(), s.x_atomic) != held[k].end()) {
+            f.held.push_back(&s);
+          }
+        }
+        f.compositions = DistinctCompositions(training);
       },
       settings.threads);
   return folds;

@@ -20,14 +20,21 @@
 
 namespace alloycolor::fit {
 
+// A candidate built on all samples with its folds, scored on them (selection.cc).
+struct Scored {
+  std::unique_ptr<AlloyModel> model;  // null where it could not be built or scored
+  MethodScore score;
+  // Each held-out sample's score, in the folds' order, and beside it its composition.
+  std::vector<double> values, held_x;
+  std::string metric;
+};
+
 struct FitMemo {
   struct Remembered {
     nlohmann::json model;
     MethodScore score;
     std::vector<double> values, held_x;
     std::string metric;
-    // Its folds: each one's composition and model (null where the fold failed).
-    std::vector<std::pair<double, nlohmann::json>> folds;
   };
   std::mutex mutex;
   std::map<std::string, Remembered> degree_choices;
@@ -50,20 +57,6 @@ struct Fold {
   std::vector<const Sample*> held;
   std::vector<double> compositions;  // of the fold's training samples
 };
-
-// A candidate built on all samples with its folds, scored on them (selection.cc).
-struct Scored {
-  std::unique_ptr<AlloyModel> model;  // null where it could not be built or scored
-  MethodScore score;
-  // Each held-out sample's score, in the folds' order, and beside it its composition.
-  std::vector<double> values, held_x;
-  std::string metric;
-  std::vector<Fold> folds;  // ErrorFolds' order
-};
-
-// The fold that holds out `held` (compositions) of the data set, without its model: x the
-// first of them, the held-out samples and the training compositions.
-Fold HeldOutFold(const Dataset& dataset, const std::vector<double>& held);
 
 // The method built without each of ErrorFolds in turn, in parallel; `model` is the one
 // built on all samples (the folds' parent: a method with warm-started folds starts there).
@@ -100,10 +93,6 @@ std::unique_ptr<AlloyModel> BuildWithFolds(const MethodInfo& method, const Datas
 void EstimatePredictionError(const MethodInfo& method, std::vector<Fold>& folds,
                              const Dataset& dataset, const FitSettings& settings,
                              AlloyModel* model);
-// The same with B's gap exponent given, not measured (a blend's: its members' folds stand
-// for its own, and no method refits it on pairs held out together).
-void EstimatePredictionError(double gap_exponent, std::vector<Fold>& folds, const Dataset& dataset,
-                             const FitSettings& settings, AlloyModel* model);
 
 // The prediction error `error` (another fit's, whose folds stand for this one's) given to
 // `model` with the misfit and replicate scatter measured on `model` itself.
@@ -116,17 +105,17 @@ void RecordInSampleError(const Dataset& dataset, const FitSettings& settings, Al
 inline constexpr double kInSampleMissDe00 = 1.0;
 inline constexpr double kInSampleMissReflectance = 0.01;
 
-// auto's weights (summing to 1): each candidate scored on the folds gets 1 / the mean of its
-// squared fold scores (values), the inverse of its leave-one-out mean squared error; where
-// some are exact on every fold, those share all of it. A candidate that contradicts the
-// user's own end samples (`misses_end`), which no fold holds out, gets none while another
-// does not. Shares under kLeastShare are dropped and the rest share their weight (a member
-// with under 1 % moves the blend's eps by under 1 % of its distance from the others).
-// `except`: the folds' scores at that composition left out (NaN: none). All zero where
-// nothing is scored.
-inline constexpr double kLeastShare = 0.01;
-std::vector<double> FoldWeights(const std::vector<Scored>& candidates,
-                                const std::vector<bool>& misses_end, double except);
+// auto's one-sigma calibrated on the errors of its choice, not only of the method chosen
+// (selection.cc): the method that wins on the folds is the one whose folds happened to go
+// well, so the calibration on its own folds is optimistic. Each fold's held-out error is
+// taken from the candidate that auto's rule chooses without that fold; as the calibration is
+// the folds' squared errors over their squared sigmas, summed (SigmaCalibration), the one
+// from those errors over the chosen candidate's own is sqrt(sum of the choices' squared
+// errors / sum of its own), the factor, at least 1. 1 with fewer than two folds or where
+// every fold leads to the chosen one.
+// `misses_end`: per candidate, whether it contradicts an end sample (BuildAuto).
+double ChoiceCalibrationFactor(const std::vector<Scored>& candidates,
+                               const std::vector<bool>& misses_end, size_t chosen);
 
 // `auto` and the physical degree choice (selection.cc).
 bool ChoosesDegree(const MethodInfo& method, const FitSettings& settings);

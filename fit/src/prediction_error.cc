@@ -233,22 +233,14 @@ double MeasuredGapExponent(const MethodInfo& method, const std::vector<Fold>& si
   return std::clamp(num / den, 0.0, fallback);
 }
 
-// The wavelengths the folds' eps errors are measured at: 81 across the model's range.
-std::vector<double> ErrorGrid(const AlloyModel& model) {
-  const double lo = model.lambda_min_nm(), hi = model.lambda_max_nm();
-  std::vector<double> grid;
-  for (int j = 0; j <= 80; ++j) grid.push_back(lo + (hi - lo) * j / 80.0);
-  return grid;
-}
-
 // The interpolation error's scale from the folds (nothing where no fold could be used),
-// with B's gap exponent given, calibrated on their colour errors; sets each fold model's
-// error too.
-PredictionError FoldPredictionError(double gap_exponent, std::vector<Fold>& fitted,
+// calibrated on their colour errors; sets each fold model's error too.
+PredictionError FoldPredictionError(const MethodInfo& method, std::vector<Fold>& fitted,
                                     const Dataset& dataset, const FitSettings& settings,
                                     const AlloyModel& model) {
   const double lo = model.lambda_min_nm(), hi = model.lambda_max_nm();
-  const std::vector<double> grid = ErrorGrid(model);
+  std::vector<double> grid;
+  for (int j = 0; j <= 80; ++j) grid.push_back(lo + (hi - lo) * j / 80.0);
   std::vector<Fold*> done;  // a fold the method cannot fit says nothing about the error
   double gap_sum = 0;
   for (Fold& f : fitted) {
@@ -260,6 +252,7 @@ PredictionError FoldPredictionError(double gap_exponent, std::vector<Fold>& fitt
   }
   if (done.empty()) return {};
   const double reference_gap = gap_sum / done.size();
+  const double gap_exponent = MeasuredGapExponent(method, fitted, dataset, settings, model, grid);
   std::vector<FoldErrors> errors;
   for (Fold* fp : done) {
     const Fold& f = *fp;
@@ -423,14 +416,7 @@ double SigmaCalibration(const std::vector<double>& errors, const std::vector<dou
 void EstimatePredictionError(const MethodInfo& method, std::vector<Fold>& fitted,
                              const Dataset& dataset, const FitSettings& settings,
                              AlloyModel* model) {
-  const double gap_exponent =
-      MeasuredGapExponent(method, fitted, dataset, settings, *model, ErrorGrid(*model));
-  EstimatePredictionError(gap_exponent, fitted, dataset, settings, model);
-}
-
-void EstimatePredictionError(double gap_exponent, std::vector<Fold>& fitted, const Dataset& dataset,
-                             const FitSettings& settings, AlloyModel* model) {
-  PredictionError error = FoldPredictionError(gap_exponent, fitted, dataset, settings, *model);
+  PredictionError error = FoldPredictionError(method, fitted, dataset, settings, *model);
   const double lo = model->lambda_min_nm(), hi = model->lambda_max_nm();
   AddMisfit(dataset, *model, MisfitGrid(lo, hi), &error);
   if (!error.present() && error.misfit.empty() && error.scatter.empty()) return;

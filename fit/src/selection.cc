@@ -1,6 +1,6 @@
 // `auto` (BuildAuto) and the physical model's composition degree: candidates built with
-// their folds and scored on them; auto weighs them by their folds into a blend, the degree
-// is the first in order of preference within the folds' own scatter of the best.
+// their folds, scored on them, and the first in order of preference within the folds' own
+// scatter of the best chosen.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -9,13 +9,12 @@
 #include "alloycolor/color/sample_error.h"
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/progress.h"
-#include "alloycolor/model/blend_model.h"
 #include "folds.h"
 
 namespace alloycolor::fit {
 namespace {
 
-constexpr double kDegreeTolerance = 1.10;
+constexpr double kAutoTolerance = 1.10;
 constexpr int kCandidateIterations = 100;  // a physical degree candidate's solver budget
 // Nordheim's rule bows the damping quadratically in composition (the plasma frequency is
 // nearly linear): the degree kept unless leave-one-out finds another clearly better.
@@ -31,14 +30,10 @@ Scored ScoreWithFolds(const MethodInfo& method, const Dataset& dataset, const Fi
     AddFolds(method, dataset, settings, model.get(), &folds);
     r.model = std::move(model);
     ScoreFolds(method.name, folds, *settings.colorimeter, &r);
-    r.folds = std::move(folds);
   } catch (const Error& e) {
     r.score.error = e.what();
   }
-  if (!r.score.error.empty()) {
-    r.model.reset();
-    r.folds.clear();
-  }
+  if (!r.score.error.empty()) r.model.reset();
   return r;
 }
 
@@ -62,26 +57,44 @@ double Rms(const std::vector<double>& values) {
   return std::sqrt(sum / std::max<size_t>(values.size(), 1));
 }
 
-// The physical model's composition degree among candidates listed in order of preference
-// (Nordheim's first), scored on the folds by their squared errors (the tolerance on their
-// RMS), so that one bad fold counts as it does in a squared loss: the first whose mean lies
-// within kDegreeTolerance of the lowest, or whom the lowest does not lead by more than one
-// standard error of the fold-by-fold differences (from two folds): leave-one-out over few
-// folds flatters the flexible candidates. `chosen` and `best` are candidates.size() when
-// none could be scored.
+// How ChooseSimplest weighs a lead of the lowest over a candidate preferred to it.
+//  - kAuto: on the folds' scores, a lead only where the lowest beats the candidate
+//    outright (the lowest's worst fold below the candidate's best). With five rivals one
+//    often wins every fold of a few by chance, and by more than the folds' differences
+//    scatter: on a Cu-Zn series with 2 % scatter added, two folds favoured eps-spline,
+//    which then erred 4.66 against smooth's 2.61. A lead that a reshuffling of the folds
+//    could undo is no lead.
+//  - kDegree (one rival, the physical model's degree 1): on the folds' squared scores (the
+//    tolerance on their RMS), so that one bad fold counts as it does in a squared loss, a
+//    lead beyond one standard error of the fold-by-fold differences (from two folds).
+enum class Lead { kAuto, kDegree };
+
+// The choice among candidates listed in order of preference (auto:
+// MethodTraits::auto_rank; the physical degree: Nordheim's first): the first whose
+// mean lies within kAutoTolerance of the lowest, or whom the lowest does not lead (`lead`):
+// leave-one-out over few folds flatters the flexible candidates.
+// `chosen` and `best` are candidates.size() when none could be scored.
 struct Choice {
   size_t chosen, best;
-  bool within_tolerance = false;  // the chosen is not the best, but within kDegreeTolerance
+  std::string rule;  // why the chosen, if it is not the best: "10 %" or the lead's test
+  std::vector<size_t> acceptable;  // every candidate the rule accepts, in order; chosen first
 };
 
-Choice ChooseDegree(const std::vector<Scored>& candidates) {
+// `except`: the folds' scores at that composition left out (NaN: none).
+Choice ChooseSimplest(const std::vector<Scored>& candidates, Lead lead,
+                      double except = std::nan("")) {
+  const bool squared = lead == Lead::kDegree;
   const size_t none = candidates.size();
-  Choice c{none, none};
+  Choice c{none, none, ""};
   std::vector<std::vector<double>> loss(candidates.size());
   std::vector<double> mean(candidates.size(), 0.0);
   for (size_t i = 0; i < candidates.size(); ++i) {
     if (!candidates[i].score.error.empty()) continue;
-    for (double v : candidates[i].values) loss[i].push_back(v * v);
+    const Scored& r = candidates[i];
+    for (size_t k = 0; k < r.values.size(); ++k) {
+      if (k < r.held_x.size() && r.held_x[k] == except) continue;
+      loss[i].push_back(squared ? r.values[k] * r.values[k] : r.values[k]);
+    }
     for (double v : loss[i]) mean[i] += v / loss[i].size();
     if (!loss[i].empty() && (c.best == none || mean[i] < mean[c.best])) c.best = i;
   }
@@ -89,6 +102,9 @@ Choice ChooseDegree(const std::vector<Scored>& candidates) {
   const auto led = [&](size_t i) {
     const std::vector<double>& a = loss[i];
     const std::vector<double>& b = loss[c.best];
+    if (lead == Lead::kAuto) {
+      return *std::max_element(b.begin(), b.end()) < *std::min_element(a.begin(), a.end());
+    }
     if (a.size() != b.size() || a.size() < 2) return true;
     double d = 0, sq = 0;
     for (size_t k = 0; k < a.size(); ++k) d += a[k] - b[k];
@@ -96,13 +112,20 @@ Choice ChooseDegree(const std::vector<Scored>& candidates) {
     for (size_t k = 0; k < a.size(); ++k) sq += std::pow(a[k] - b[k] - d, 2);
     return d > std::sqrt(sq / (a.size() - 1) / a.size());
   };
+  const double tolerance = squared ? kAutoTolerance * kAutoTolerance : kAutoTolerance;
   for (size_t i = 0; i < candidates.size(); ++i) {
     if (loss[i].empty()) continue;
-    const bool close = mean[i] <= mean[c.best] * kDegreeTolerance * kDegreeTolerance;
+    const bool close = mean[i] <= mean[c.best] * tolerance;
     if (close || !led(i)) {
-      c.chosen = i;
-      c.within_tolerance = i != c.best && close;
-      return c;
+      if (c.acceptable.empty()) {
+        c.chosen = i;
+        if (i != c.best) {
+          c.rule = close                 ? "10 %"
+                   : lead == Lead::kAuto ? "the range of the folds"
+                                         : "one standard error of the folds' differences";
+        }
+      }
+      c.acceptable.push_back(i);
     }
   }
   return c;
@@ -127,13 +150,13 @@ double OwnErrorRms(const AlloyModel& model, const Dataset& dataset, const color:
 
 // A physical candidate scored on its folds unless its own error on the samples (converged:
 // an unfinished fit is continued first) already exceeds what it would have to beat,
-// `preferred`'s leave-one-out RMS over kDegreeTolerance: a held-out sample is no nearer than
+// `preferred`'s leave-one-out RMS over kAutoTolerance: a held-out sample is no nearer than
 // the fitted ones, so its folds could not make it win (Au-Ag at degree 1: own error 1.0
 // against 4e-5), and they are not fitted.
 Scored BuildUnlessOutdone(const MethodInfo& method, const Dataset& dataset,
                           const FitSettings& settings, const Scored& preferred) {
   if (!preferred.score.error.empty()) return BuildScored(method, dataset, settings);
-  const double must_beat = Rms(preferred.values) / kDegreeTolerance;
+  const double must_beat = Rms(preferred.values) / kAutoTolerance;
   Scored r;
   r.score.method = method.name;
   std::unique_ptr<AlloyModel> model;
@@ -208,7 +231,7 @@ Scored BuildChoosingDegree(const MethodInfo& method, const Dataset& dataset,
     }
     candidates.push_back(std::move(r));
   }
-  const Choice c = ChooseDegree(candidates);
+  const Choice c = ChooseSimplest(candidates, Lead::kDegree);
   if (c.chosen == candidates.size()) {
     // No degree could be scored: the default fit says why (or succeeds on its own).
     return BuildScored(method, dataset, settings);
@@ -239,13 +262,10 @@ Scored BuildChoosingDegree(const MethodInfo& method, const Dataset& dataset,
     }
     chosen.model = std::move(finished);
   }
-  char reason[240];
-  std::snprintf(reason, sizeof reason, "leave-one-out RMS %s %.4g over %d folds%s",
+  char reason[200];
+  std::snprintf(reason, sizeof reason, "leave-one-out RMS %s %.4g over %d folds%s%s",
                 chosen.metric.c_str(), Rms(chosen.values), chosen.score.folds,
-                c.chosen == c.best   ? ", the lowest"
-                : c.within_tolerance ? ", Nordheim's degree 2 within 10 %"
-                                     : ", Nordheim's degree 2 within one standard error of "
-                                       "the folds' differences");
+                c.rule.empty() ? ", the lowest" : ", Nordheim's degree 2 within ", c.rule.c_str());
   FitSummary summary = chosen.model->fit_summary();
   nlohmann::json table = nlohmann::json::array();
   for (size_t i = 0; i < candidates.size(); ++i) {
@@ -299,18 +319,13 @@ Scored RememberedDegreeChoice(const MethodInfo& method, const Dataset& dataset,
     }
   }
   FitMemo& memo = *settings.memo;
-  const std::string source = "the remembered " + method.name + " fit";
-  const auto copy = [&](const FitMemo::Remembered& m) {
+  const auto copy = [&method](const FitMemo::Remembered& m) {
     Scored r;
-    r.model = method.read(m.model, source);
+    r.model = method.read(m.model, "the remembered " + method.name + " fit");
     r.score = m.score;
     r.values = m.values;
     r.held_x = m.held_x;
     r.metric = m.metric;
-    for (const auto& [x, doc] : m.folds) {
-      r.folds.push_back(HeldOutFold(dataset, {x}));
-      if (!doc.is_null()) r.folds.back().model = method.read(doc, source + "'s fold");
-    }
     return r;
   };
   {
@@ -320,10 +335,7 @@ Scored RememberedDegreeChoice(const MethodInfo& method, const Dataset& dataset,
   }
   Scored r = BuildChoosingDegree(method, dataset, settings);
   if (!r.model) return r;
-  FitMemo::Remembered m{r.model->ToJson(), r.score, r.values, r.held_x, r.metric, {}};
-  for (const Fold& f : r.folds) {
-    m.folds.emplace_back(f.x, f.model ? f.model->ToJson() : nlohmann::json());
-  }
+  FitMemo::Remembered m{r.model->ToJson(), r.score, r.values, r.held_x, r.metric};
   const std::lock_guard<std::mutex> lock(memo.mutex);
   memo.degree_choices.emplace(std::move(key), std::move(m));
   return r;
@@ -331,46 +343,6 @@ Scored RememberedDegreeChoice(const MethodInfo& method, const Dataset& dataset,
 
 bool ChoosesDegree(const MethodInfo& method, const FitSettings& settings) {
   return method.traits.chooses_degree && settings.degree < 0 && !settings.fold;
-}
-
-std::vector<double> FoldWeights(const std::vector<Scored>& candidates,
-                                const std::vector<bool>& misses_end, double except) {
-  std::vector<double> mean_sq(candidates.size(), -1);
-  bool any_true = false;
-  for (size_t i = 0; i < candidates.size(); ++i) {
-    const Scored& r = candidates[i];
-    if (!r.score.error.empty()) continue;
-    double sum = 0;
-    int count = 0;
-    for (size_t k = 0; k < r.values.size(); ++k) {
-      if (k < r.held_x.size() && r.held_x[k] == except) continue;
-      sum += r.values[k] * r.values[k];
-      ++count;
-    }
-    if (count == 0) continue;
-    mean_sq[i] = sum / count;
-    any_true |= !misses_end[i];
-  }
-  std::vector<double> w(candidates.size(), 0.0);
-  const auto share = [&](bool exact) {
-    double total = 0;
-    for (size_t i = 0; i < w.size(); ++i) {
-      const bool counted = mean_sq[i] >= 0 && !(any_true && misses_end[i]);
-      w[i] = !counted ? 0 : exact ? (mean_sq[i] == 0 ? 1 : 0) : 1 / mean_sq[i];
-      total += w[i];
-    }
-    for (double& v : w) v = total > 0 ? v / total : 0;
-    return total > 0;
-  };
-  // Candidates exact on every fold share everything; otherwise the inverse mean squares.
-  if (!share(true)) share(false);
-  double kept = 0;
-  for (double& v : w) {
-    if (v < kLeastShare) v = 0;
-    kept += v;
-  }
-  for (double& v : w) v = kept > 0 ? v / kept : 0;
-  return w;
 }
 
 namespace {
@@ -391,71 +363,90 @@ double EndMiss(const AlloyModel& model, const Dataset& dataset, bool* misses) {
   return worst;
 }
 
-// What auto delivers, one line: the blend's members and shares (or the one member), how
-// they were weighed, and who was left out for missing an end sample.
-std::string WeightsReason(const MethodSelection& selection, const std::vector<double>& weights,
-                          const std::vector<bool>& misses_end, int folds) {
-  std::string members, missed;
-  int count = 0;
-  for (size_t i = 0; i < weights.size(); ++i) {
-    char part[96];
-    if (weights[i] > 0) {
-      std::snprintf(part, sizeof part, "%s%s %.3f", members.empty() ? "" : ", ",
-                    selection.scores[i].method.c_str(), weights[i]);
-      members += part;
-      ++count;
-    } else if (misses_end[i]) {
-      std::snprintf(part, sizeof part, "%s%s (%.3g at an end sample)", missed.empty() ? "" : ", ",
-                    selection.scores[i].method.c_str(), selection.scores[i].end_miss);
-      missed += part;
+// auto's rule: the simplest within the folds' scatter of the best (ChooseSimplest); the
+// folds cannot hold out the ends, so among the candidates the folds cannot tell apart, one
+// that contradicts the user's own end samples gives way to one that does not. `except`:
+// the folds at that composition left out (NaN: none).
+Choice ChooseAmong(const std::vector<Scored>& candidates, const std::vector<bool>& misses_end,
+                   double except = std::nan("")) {
+  Choice c = ChooseSimplest(candidates, Lead::kAuto, except);
+  if (c.chosen < candidates.size() && misses_end[c.chosen]) {
+    for (size_t i : c.acceptable) {
+      if (!misses_end[i]) {
+        c.chosen = i;
+        c.rule = "the ends' own samples";
+        break;
+      }
     }
   }
-  char how[200];
-  std::snprintf(how, sizeof how,
-                "weights 1 / mean squared %s over %d held-out samples, shares under %.0f %% "
-                "left out",
-                selection.metric.c_str(), folds, 100 * kLeastShare);
-  std::string reason = (count > 1 ? "blend of " : "") + members + ": " + how;
-  if (!missed.empty()) reason += "; no share for missing the user's end samples: " + missed;
+  return c;
+}
+
+// Why auto chose what it chose, one line.
+std::string ChoiceReason(const MethodSelection& selection, const Choice& c,
+                         const std::vector<const MethodInfo*>& order) {
+  const MethodScore& chosen_score = selection.scores[c.chosen];
+  const MethodScore& best_score = selection.scores[c.best];
+  const std::string& chosen_name = order[c.chosen]->name;
+  const std::string& best_name = order[c.best]->name;
+  char reason[320];
+  if (c.rule.empty()) {
+    std::snprintf(reason, sizeof reason, "%s: lowest mean %s, %.4g over %d held-out samples",
+                  chosen_name.c_str(), selection.metric.c_str(), chosen_score.mean,
+                  chosen_score.folds);
+  } else if (c.rule == "one fold") {
+    std::snprintf(reason, sizeof reason,
+                  "%s: one fold (three compositions) compares the straight lines between the "
+                  "ends, not the curves through three samples; %s scored %.4g, %s %.4g",
+                  chosen_name.c_str(), chosen_name.c_str(), chosen_score.mean, best_name.c_str(),
+                  best_score.mean);
+  } else if (c.rule == "the ends' own samples") {
+    std::snprintf(reason, sizeof reason,
+                  "%s: mean %s %.4g over %d held-out samples, within the folds' tolerance of "
+                  "the lowest (%s, %.4g), the first in auto's order true to the end samples",
+                  chosen_name.c_str(), selection.metric.c_str(), chosen_score.mean,
+                  chosen_score.folds, best_name.c_str(), best_score.mean);
+  } else if (c.rule == "the range of the folds") {
+    std::snprintf(reason, sizeof reason,
+                  "%s: mean %s %.4g over %d held-out samples, the first in auto's order that "
+                  "the lowest (%s, %.4g) does not beat outright: within the range of the folds, "
+                  "its best fold no worse than the lowest's worst",
+                  chosen_name.c_str(), selection.metric.c_str(), chosen_score.mean,
+                  chosen_score.folds, best_name.c_str(), best_score.mean);
+  } else {
+    std::snprintf(reason, sizeof reason,
+                  "%s: mean %s %.4g over %d held-out samples, the first in auto's order "
+                  "within %s of the lowest (%s, %.4g)",
+                  chosen_name.c_str(), selection.metric.c_str(), chosen_score.mean,
+                  chosen_score.folds, c.rule.c_str(), best_name.c_str(), best_score.mean);
+  }
   return reason;
 }
 
-// The blend of the candidates' folds at each fold composition, each weighed without that
-// fold's own scores (so that its error is one the weights did not see), for the blend's
-// prediction error. `members`: the candidates with a share. Null where a member's fold
-// failed.
-std::vector<Fold> BlendFolds(std::vector<Scored>& candidates, const std::vector<bool>& misses_end,
-                             const std::vector<size_t>& members, const Dataset& dataset) {
-  std::vector<Fold> folds;
-  const std::vector<double> xs = ErrorFolds(dataset);
-  for (size_t k = 0; k < xs.size(); ++k) {
-    Fold f = HeldOutFold(dataset, {xs[k]});
-    const std::vector<double> without = FoldWeights(candidates, misses_end, xs[k]);
-    double total = 0;
-    for (size_t i : members) total += without[i];
-    std::vector<BlendModel::Member> parts;
-    for (size_t i : members) {
-      std::vector<Fold>& own = candidates[i].folds;
-      if (k >= own.size() || own[k].x != xs[k] || !own[k].model) {
-        parts.clear();
-        break;
-      }
-      // A member without a share once this fold is left out keeps a token one.
-      const double share = total > 0 ? std::max(without[i] / total, 1e-9) : 1.0;
-      parts.push_back({share, std::move(own[k].model)});
-    }
-    if (parts.size() == members.size()) {
-      double sum = 0;
-      for (const auto& part : parts) sum += part.weight;
-      for (auto& part : parts) part.weight /= sum;
-      f.model = std::make_unique<BlendModel>(WithoutSamples(dataset, {xs[k]}), std::move(parts));
-    }
-    folds.push_back(std::move(f));
-  }
-  return folds;
-}
-
 }  // namespace
+
+double ChoiceCalibrationFactor(const std::vector<Scored>& candidates,
+                               const std::vector<bool>& misses_end, size_t chosen) {
+  const Scored& own = candidates[chosen];
+  std::vector<double> held = own.held_x;
+  std::sort(held.begin(), held.end());
+  held.erase(std::unique(held.begin(), held.end()), held.end());
+  if (held.size() < 2) return 1;
+  double own_sq = 0, choice_sq = 0;
+  for (double x : held) {
+    const Choice c = ChooseAmong(candidates, misses_end, x);
+    if (c.chosen >= candidates.size()) return 1;
+    const Scored& other = candidates[c.chosen];
+    if (other.held_x != own.held_x) return 1;  // scored on other folds
+    for (size_t k = 0; k < own.values.size(); ++k) {
+      if (own.held_x[k] != x) continue;
+      own_sq += own.values[k] * own.values[k];
+      choice_sq += other.values[k] * other.values[k];
+    }
+  }
+  if (!(own_sq > 0)) return 1;
+  return std::max(std::sqrt(choice_sq / own_sq), 1.0);
+}
 
 std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings& settings) {
   const std::vector<const MethodInfo*> order = AutoCandidates();  // preferred first
@@ -476,7 +467,7 @@ std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings&
     return model;
   }
   // Every candidate built on all samples with its folds (which also give its prediction
-  // error): the folds score it, and the members of the blend are already built.
+  // error): the folds score it, and the chosen one is already built.
   FitSettings inner = settings;
   inner.progress = {};
   inner.details = {};
@@ -510,61 +501,36 @@ std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings&
     selection.scores.push_back(r.score);
     if (selection.metric.empty()) selection.metric = candidates.back().metric;
   }
-  std::vector<double> weights = FoldWeights(candidates, misses_end, std::nan(""));
+  Choice c = ChooseAmong(candidates, misses_end);
   // One fold (three compositions): it holds out the middle sample and predicts it from the
   // ends, where every interpolation is a straight line in its own space, so the fold
-  // compares spaces, not the curves delivered through three samples (on Au-Ag's 0, 0.1, 1
-  // it favoured paper's line, whose curve then erred 11 on the held-out samples against
-  // smooth's 1.3). A method that chooses its smoothing by other evidence
-  // (MethodTraits::chosen_on_one_fold) is delivered there alone.
-  bool one_fold = false;
+  // compares spaces, not the curves delivered through three samples, and one score has no
+  // scatter to weigh a lead by (on Au-Ag's 0, 0.1, 1 it preferred paper's line, whose curve
+  // then erred 11 on the held-out samples against smooth's 1.3). A method that chooses its
+  // smoothing by other evidence (MethodTraits::chosen_on_one_fold) is taken there.
   if (held_out == 1) {
     for (size_t i = 0; i < order.size(); ++i) {
-      if (order[i]->traits.chosen_on_one_fold && candidates[i].model && !misses_end[i]) {
-        weights.assign(order.size(), 0.0);
-        weights[i] = 1;
-        one_fold = true;
+      if (order[i]->traits.chosen_on_one_fold && candidates[i].score.error.empty() &&
+          c.chosen != i) {
+        c.rule = "one fold";
+        c.chosen = i;
         break;
       }
     }
   }
-  std::vector<size_t> members;
-  for (size_t i = 0; i < weights.size(); ++i) {
-    if (weights[i] > 0) members.push_back(i);
-    selection.scores[i].weight = weights[i];
+  if (c.chosen == order.size()) {
+    throw Error(dataset.manifest_path + ": auto: no method could be scored");
   }
-  if (members.empty()) throw Error(dataset.manifest_path + ": auto: no method could be scored");
-  if (one_fold) {
-    const size_t i = members.front();
-    selection.reason = order[i]->name +
-                       ": one fold (three compositions) compares the straight lines between "
-                       "the ends, not the curves through three samples; " +
-                       order[i]->name + " chooses its smoothing by other evidence";
-  } else {
-    selection.reason =
-        WeightsReason(selection, weights, misses_end, candidates[members.front()].score.folds);
-  }
-  std::unique_ptr<AlloyModel> model;
-  if (members.size() == 1) {
-    model = std::move(candidates[members.front()].model);
-  } else {
-    // The blend's prediction error from its own folds; B's gap exponent the members'
-    // measured ones, weighted (no method refits the blend on pairs held out together).
-    double gap_exponent = 0;
-    for (size_t i : members) {
-      const PredictionError& e = candidates[i].model->prediction_error();
-      gap_exponent += weights[i] * (e.present() ? e.gap_exponent : order[i]->traits.gap_exponent);
-    }
-    std::vector<Fold> folds = BlendFolds(candidates, misses_end, members, dataset);
-    std::vector<BlendModel::Member> parts;
-    for (size_t i : members) parts.push_back({weights[i], std::move(candidates[i].model)});
-    model = std::make_unique<BlendModel>(dataset, std::move(parts));
-    if (settings.calibrate) {
-      EstimatePredictionError(gap_exponent, folds, dataset, settings, model.get());
-    }
-    RecordInSampleError(dataset, settings, model.get());
-  }
+  selection.reason = ChoiceReason(selection, c, order);
+  std::unique_ptr<AlloyModel> model = std::move(candidates[c.chosen].model);
   FitSummary summary = model->fit_summary();
+  const double factor = ChoiceCalibrationFactor(candidates, misses_end, c.chosen);
+  if (factor > 1 && model->prediction_error().present()) {
+    PredictionError error = model->prediction_error();
+    error.calibration = std::min(error.calibration * factor, 1e3);
+    model->set_prediction_error(std::move(error));
+    summary.details["calibration_times_for_the_choice"] = factor;
+  }
   summary.selection = selection;
   model->set_fit_summary(std::move(summary));
   return model;

@@ -11,7 +11,6 @@
 #include "alloycolor/core/io.h"
 #include "alloycolor/core/json.h"
 #include "alloycolor/core/text.h"
-#include "alloycolor/model/blend_model.h"
 #include "alloycolor/model/optics.h"
 #include "alloycolor/model/registry.h"
 
@@ -420,7 +419,6 @@ nlohmann::json AlloyModel::ToJson() const {
     for (const MethodScore& m : fit_summary_.selection.scores) {
       nlohmann::json row = {{"method", m.method}, {"folds", m.folds}};
       if (m.end_miss > 0) row["end_miss"] = m.end_miss;
-      if (m.weight > 0) row["weight"] = m.weight;
       if (m.error.empty()) {
         row["mean"] = m.mean;
         row["max"] = m.max;
@@ -641,10 +639,6 @@ void ReadMethodSelection(const nlohmann::json& sel, MethodSelection* selection) 
     if (scores[i].contains("end_miss")) {
       m.end_miss = Number(scores[i].at("end_miss"), where + ".end_miss");
     }
-    if (scores[i].contains("weight")) {
-      m.weight = Number(scores[i].at("weight"), where + ".weight");
-      if (!(m.weight >= 0 && m.weight <= 1)) throw Error(where + ".weight: must lie in 0..1");
-    }
     if (scores[i].contains("error")) {
       m.error = String(scores[i].at("error"), where + ".error");
     } else {
@@ -766,10 +760,7 @@ std::unique_ptr<AlloyModel> ModelFromJson(const nlohmann::json& doc, const std::
                   std::to_string(kModelFormatVersion) + ")");
     }
     const std::string method = String(Field(doc, "method", "model"), "method");
-    // A blend is made of the registry's methods, not one of them (blend_model.h).
-    std::unique_ptr<AlloyModel> model = method == kBlendMethod
-                                            ? std::make_unique<BlendModel>(doc, source)
-                                            : RequireMethod(method).read(doc, source);
+    std::unique_ptr<AlloyModel> model = RequireMethod(method).read(doc, source);
     model->set_source(source);
     CheckModelUsable(*model);
     return model;

@@ -471,9 +471,8 @@ def fit(dataset: Union[Dataset, str], method: str = "auto", *, degree: Optional[
     """Fits ``method`` (see :func:`methods`) to a data set, as ``alloycolor fit`` does.
 
     method: one of :func:`methods`, or "auto" (the default): every method scored by
-    leave-one-composition-out on the samples and each given a share by its scores (a
-    "blend" model, or the one method left), as ``alloycolor fit`` does; the table and the
-    shares are in ``model.to_json()["fit"]["selection"]``.
+    leave-one-composition-out on the samples and the best chosen, as ``alloycolor fit``
+    chooses; the table behind the choice is in ``model.to_json()["fit"]["selection"]``.
 
     degree: composition degree (physical; default 2, or 1 where leave-one-out finds it clearly better; lowered where the fit leaves physics);
     smoothing: roughness penalty across composition (smooth; default: chosen

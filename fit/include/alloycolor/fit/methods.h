@@ -71,20 +71,20 @@ struct FitSettings {
 // its leave-one-composition-out folds (those of its prediction error, see BuildModel: each
 // interior composition held out in turn, 20 at most), and scored on the folds' held-out
 // samples as `validate` scores them (mean CIEDE2000 at normal incidence, or reflectance RMS
-// for data without colour). Each gets a share in proportion to 1 / its folds' mean squared
-// score (FoldWeights; shares under 1 % dropped): one method left is delivered as it is,
-// more as a BlendModel of their eps (model/blend_model.h) with its own prediction error from
-// its members' folds, blended. No order of preference and no tolerance: a weighting by the
-// folds hedges where they cannot tell the methods apart, as with a few folds they rarely
-// can. The folds cannot hold out the two end samples: a method that misses an end sample
-// by more than ΔE00 1 (reflectance RMS 0.01) and by more than its mean fold error gets no
-// share while another does not. The physical model is not scored where its folds cannot
+// for data without colour); the first method in the registry's order of preference
+// (MethodTraits::auto_rank: smooth, eps-pchip, eps-linear, eps-spline, paper, physical)
+// whose mean lies within 10 % of the lowest, or whose best fold is no worse than the
+// lowest's worst, wins: a rival displaces the default regression only on evidence the folds
+// can give, a lead on every fold that no reshuffling of them could undo. The folds cannot
+// hold out the two end samples: among the methods the rule accepts, one that misses an end
+// sample by more than ΔE00 1 (reflectance RMS 0.01) and by more than its mean fold error
+// gives way to one that does not. The physical model is not scored where its folds cannot
 // fit its composition degree (three compositions: degree 2, its folds' two samples only a
-// line). With three compositions the one fold predicts the middle from the ends, where
-// every interpolation is a straight line, so it cannot compare the curves delivered: smooth
-// alone (unless it failed). With fewer, nothing can be held out and the first candidate
-// (MethodTraits::auto_rank) is delivered (with two samples every interpolation is the
-// line). The model carries the table and the shares (FitSummary::selection).
+// line). With three compositions
+// the one fold predicts the middle from the ends, where every interpolation is a straight
+// line, so it cannot compare the curves delivered: smooth is chosen (unless it failed).
+// With fewer, nothing can be held out and the first in order is chosen (with two samples every
+// interpolation is the line). The chosen model carries the table (FitSummary::selection).
 inline constexpr const char* kAutoMethod = "auto";
 std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings& settings);
 

@@ -44,14 +44,11 @@ struct MethodScore {
   // The model's own (in-sample) error at the end compositions, which no fold can hold
   // out, in the folds' metric: the larger of the two. Not in mean and max.
   double end_miss = 0;
-  // Its share of the blend auto delivers (1 when it is delivered alone, 0 when it has no
-  // part; blend_model.h).
-  double weight = 0;
   std::string error;  // non-empty: the candidate could not be scored (why)
 };
 struct MethodSelection {
   std::string metric;  // "delta_e00 (normal incidence, D65, 2 deg)" or "reflectance_rms"
-  std::string reason;  // what auto delivers and why, one line
+  std::string reason;  // why the chosen one was chosen, one line
   std::vector<MethodScore> scores;
   bool present() const { return !reason.empty(); }
 };

@@ -29,8 +29,9 @@ struct FitSettings;  // fit/methods.h: the options a user gives any method
 
 // What the rest of the toolkit needs to know of a method, so that nothing else asks its name.
 struct MethodTraits {
-  // Its place among `auto`'s candidates (the order of its table); rank 0 is delivered where
-  // no composition can be held out (the built-ins: smooth, a regression, as real data with
+  // Its place in `auto`'s order of preference: the first candidate within the folds'
+  // tolerance of the lowest score wins, so rank 0 is the default that a rival displaces
+  // only on the folds' evidence (the built-ins: smooth, a regression, as real data with
   // scatter favour it; then the interpolations, simplest first). Negative: not a candidate.
   int auto_rank = -1;
   // The power of the gap between neighbouring training compositions in its error bars'

@@ -48,3 +48,21 @@ def test_performance_names_its_command():
     text = (REPO / "docs" / "performance.md").read_text()
     assert re.search(r"Written by `scripts/bench\.sh[^`]*`", text)
     assert "naive" in text
+
+
+def test_draws_tables_are_the_scripts():
+    spec = importlib.util.spec_from_file_location("draws_table",
+                                                  REPO / "scripts" / "draws_table.py")
+    script = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(script)
+    text = (REPO / "docs" / "draws.md").read_text()
+    assert "scripts/draws.sh" in text.splitlines()[2]
+    seed, sets = re.search(r"seed (\d+), (\d+) data sets", text).groups()
+    loo, bars, per_set = tables(text)
+    methods = script.acc.METHODS
+    assert loo[0] == ["set", "drawn as"] + methods + ["auto / best"]
+    assert [row[0] for row in loo[2:]] == [f"draw{seed}-{i + 1}" for i in range(int(sets))]
+    assert {row[1] for row in bars[2:]} == set(methods)
+    assert {row[0] for row in bars[2:]} <= {
+        "leave-one-out", "3 compositions", "4 compositions", "all"}
+    assert [row[0] for row in per_set[2:]] == [row[0] for row in loo[2:]]

@@ -60,6 +60,24 @@ def rows(report):
     return out
 
 
+def coverage(ratios):
+    """Table cells for errors over their sigmas: how many, the shares within one and two
+    sigma, the median ratio."""
+    if not ratios:
+        return "— | — | — | —"
+    n = len(ratios)
+    return (f"{n} | {100 * sum(r <= 1 for r in ratios) / n:.0f} % | "
+            f"{100 * sum(r <= 2 for r in ratios) / n:.0f} % | {statistics.median(ratios):.2f}")
+
+
+def write_markdown(path, lines, who):
+    """The lines to `path`, whole or not at all."""
+    with open(path + ".tmp", "w") as f:
+        f.write("\n".join(lines) + "\n")
+    os.replace(path + ".tmp", path)
+    print(f"{who}: wrote {path}", file=sys.stderr)
+
+
 def fmt(v):
     return "—" if v is None else (f"{v:.2g}" if v < 0.01 else f"{v:.3f}" if v < 0.1 else f"{v:.2f}")
 
@@ -161,21 +179,12 @@ def main():
                 if not r:
                     continue
                 pooled.setdefault(m, []).extend(r)
-                lines.append(f"| {name} | {label} | {m} | {len(r)} | "
-                             f"{100 * sum(v <= 1 for v in r) / len(r):.0f} % | "
-                             f"{100 * sum(v <= 2 for v in r) / len(r):.0f} % | "
-                             f"{statistics.median(r):.2f} |")
+                lines.append(f"| {name} | {label} | {m} | {coverage(r)} |")
     for m in COVERAGE_METHODS:
         r = pooled.get(m, [])
         if r:
-            lines.append(f"| pooled | all | {m} | {len(r)} | "
-                         f"{100 * sum(v <= 1 for v in r) / len(r):.0f} % | "
-                         f"{100 * sum(v <= 2 for v in r) / len(r):.0f} % | "
-                         f"{statistics.median(r):.2f} |")
-    with open(a.out + ".tmp", "w") as f:
-        f.write("\n".join(lines) + "\n")
-    os.replace(a.out + ".tmp", a.out)
-    print(f"accuracy: wrote {a.out}", file=sys.stderr)
+            lines.append(f"| pooled | all | {m} | {coverage(r)} |")
+    write_markdown(a.out, lines, "accuracy")
 
 
 if __name__ == "__main__":

@@ -116,14 +116,6 @@ def draw_set(directory, name, rng):
     return f"{what}, s = {100 * s:g} %" + (", ends too" if ends_scattered else "")
 
 
-def coverage(ratios):
-    if not ratios:
-        return "— | — | — | —"
-    n = len(ratios)
-    return (f"{n} | {100 * sum(r <= 1 for r in ratios) / n:.0f} % | "
-            f"{100 * sum(r <= 2 for r in ratios) / n:.0f} % | {statistics.median(ratios):.2f}")
-
-
 def whole(least):
     """An argparse type: a whole number, `least` or more."""
     def number(text):
@@ -232,17 +224,14 @@ def main():
             r = [v for (n, lab, mm), vs in ratios.items() for v in vs
                  if mm == m and (label == "all" or lab == label)]
             if r:
-                lines.append(f"| {label} | {m} | {coverage(r)} |")
+                lines.append(f"| {label} | {m} | {acc.coverage(r)} |")
     lines += ["", "`auto` per set, every split pooled:", "",
               "| set | held-out errors | within 1 sigma | within 2 sigma | median error / sigma |",
               "|---|---|---|---|---|"]
     for name, _ in described:
         r = [v for (n, lab, mm), vs in ratios.items() for v in vs if n == name and mm == "auto"]
-        lines.append(f"| {name} | {coverage(r)} |")
-    with open(a.out + ".tmp", "w") as f:
-        f.write("\n".join(lines) + "\n")
-    os.replace(a.out + ".tmp", a.out)
-    print(f"draws: wrote {a.out}", file=sys.stderr)
+        lines.append(f"| {name} | {acc.coverage(r)} |")
+    acc.write_markdown(a.out, lines, "draws")
 
 
 if __name__ == "__main__":

@@ -1,4 +1,5 @@
 # Shared fixtures for the Python package's tests (run by ctest: see tests/CMakeLists.txt).
+import importlib.util
 import os
 import pathlib
 
@@ -6,6 +7,14 @@ import pytest
 
 REPO = pathlib.Path(__file__).resolve().parents[2]
 DATA = REPO / "data"
+
+
+def load_script(name):
+    """scripts/<name>.py as a module."""
+    spec = importlib.util.spec_from_file_location(name, REPO / "scripts" / f"{name}.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
 
 
 @pytest.fixture(scope="session")

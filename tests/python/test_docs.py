@@ -1,18 +1,9 @@
-# docs/accuracy.md and docs/performance.md are written by their scripts: the accuracy
-# tables hold exactly the splits, sets and methods scripts/accuracy_table.py runs (not
-# their numbers, which a rerun reproduces), and both name the command that made them.
-import importlib.util
+# docs/accuracy.md, docs/draws.md and docs/performance.md are written by their scripts: the
+# accuracy and draws tables hold exactly the splits, sets and methods their scripts run (not
+# their numbers, which a rerun reproduces), and each names the command that made it.
 import re
 
-from conftest import REPO
-
-
-def accuracy_script():
-    spec = importlib.util.spec_from_file_location("accuracy_table",
-                                                  REPO / "scripts" / "accuracy_table.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+from conftest import REPO, load_script
 
 
 def tables(text):
@@ -30,7 +21,7 @@ def tables(text):
 
 
 def test_accuracy_tables_are_the_scripts():
-    script = accuracy_script()
+    script = load_script("accuracy_table")
     text = (REPO / "docs" / "accuracy.md").read_text()
     assert "scripts/accuracy.sh" in text.splitlines()[2]
     splits, own, bars = tables(text)
@@ -51,10 +42,7 @@ def test_performance_names_its_command():
 
 
 def test_draws_tables_are_the_scripts():
-    spec = importlib.util.spec_from_file_location("draws_table",
-                                                  REPO / "scripts" / "draws_table.py")
-    script = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(script)
+    script = load_script("draws_table")
     text = (REPO / "docs" / "draws.md").read_text()
     assert "scripts/draws.sh" in text.splitlines()[2]
     seed, sets = re.search(r"seed (\d+), (\d+) data sets", text).groups()

@@ -1,22 +1,17 @@
 # scripts/draws_table.py draws the data sets docs/draws.md measures auto and the error bars
 # on: its scatter has the spread its description states, its reader agrees with the
 # program's, and the program reads the sets it writes as drawn.
-import importlib.util
 import random
 import statistics
 
 import pytest
 
-from conftest import DATA, REPO
+from conftest import DATA, load_script
 
 
 @pytest.fixture(scope="module")
 def draws():
-    spec = importlib.util.spec_from_file_location("draws_table",
-                                                  REPO / "scripts" / "draws_table.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return load_script("draws_table")
 
 
 def test_scatter_has_the_stated_spread(draws):

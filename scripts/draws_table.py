@@ -22,42 +22,21 @@ import subprocess, sys, tempfile
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import accuracy_table as acc  # noqa: E402
 
+try:
+    import alloycolor as ac
+except ImportError as e:
+    sys.exit(f"draws: the alloycolor Python package ({e}): build it (scripts/setup.sh) and put "
+             "build/python on PYTHONPATH, as scripts/draws.sh does")
+
 DATA = os.path.join(acc.ROOT, "data")
 SCATTERS = [0.005, 0.01, 0.015, 0.02, 0.03]
 
 
 def read_nk(path):
-    """The (wavelength um, n, k) rows of a refractiveindex.info 'tabulated nk' file, exact
-    repeats of a wavelength averaged (as the program reads them)."""
-    rows, inside = [], False
-    with open(path) as f:
-        for line in f:
-            s = line.strip()
-            if s.startswith("data: |"):
-                inside = True
-                continue
-            if not inside:
-                continue
-            parts = s.split()
-            try:
-                if len(parts) != 3:
-                    raise ValueError
-                rows.append(tuple(float(v) for v in parts))
-            except ValueError:
-                if rows:
-                    break
-    if not rows:
-        sys.exit(f"draws: {path}: no 'tabulated nk' rows")
-    merged, repeats = [], 1
-    for row in rows:
-        if merged and row[0] == merged[-1][0]:
-            repeats += 1
-            l, n, k = merged[-1]
-            merged[-1] = (l, n + (row[1] - n) / repeats, k + (row[2] - k) / repeats)
-        else:
-            merged.append(row)
-            repeats = 1
-    return merged
+    """The (wavelength um, n, k) rows of a lab file, as the program reads it."""
+    spectrum = ac.read_nk(path)
+    return list(zip((spectrum.lambda_nm / 1000).tolist(), spectrum.n.tolist(),
+                    spectrum.k.tolist()))
 
 
 def scattered(rows, s, rng):

@@ -40,6 +40,7 @@ def read_nk(path):
 
 
 def scattered(rows, s, rng):
+    """The rows with n and k scaled as the module's description says (s = 0: as they are)."""
     if s == 0:
         return rows
     lo, hi = rows[0][0], rows[-1][0]

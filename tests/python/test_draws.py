@@ -67,3 +67,16 @@ def test_the_program_reads_the_drawn_sets(draws, tmp_path):
             published = zinc if what.startswith("Cu-Zn") else silver
             if what.startswith("Cu-Zn") or "Rioux's ends" in what:
                 assert list(end.n) == pytest.approx([r[1] for r in published], abs=6e-5)
+
+
+def test_auto_against_the_best_by_hand(draws):
+    # Within 10 % or 0.05 of the best single method; above eps-linear or not.
+    assert draws.against_best({"eps-linear": 1.0, "smooth": 0.5, "auto": 0.55}) == (
+        0.5, True, False)
+    assert draws.against_best({"eps-linear": 1.0, "smooth": 0.5, "auto": 0.56})[1] is False
+    assert draws.against_best({"eps-linear": 0.1, "smooth": 0.02, "auto": 0.07})[1:] == (
+        True, False)
+    assert draws.against_best({"eps-linear": 0.1, "smooth": 0.02, "auto": 0.071})[1] is False
+    assert draws.against_best({"eps-linear": 1.0, "physical": 0.3, "auto": 1.2})[1:] == (
+        False, True)
+    assert draws.against_best({"smooth": 0.4, "auto": 0.4})[1:] == (True, False)

@@ -7,7 +7,9 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 start=$SECONDS
+source scripts/ccache.sh
 cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DALLOYCOLOR_SANITIZE=ON \
+  "${ccache_args[@]}" \
   -DALLOYCOLOR_BUILD_BENCH=OFF -DALLOYCOLOR_BUILD_PYTHON=OFF >/dev/null
 cmake --build build-asan -j"$(nproc)"
 built=$SECONDS

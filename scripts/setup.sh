@@ -6,7 +6,7 @@ cd "$(dirname "$0")/.."
 
 packages=(build-essential cmake ninja-build pkg-config libceres-dev libeigen3-dev
           nlohmann-json3-dev libyaml-cpp-dev libpng-dev libgtest-dev libgmock-dev
-          libbenchmark-dev libcli11-dev libxml2-utils
+          libbenchmark-dev libcli11-dev libxml2-utils ccache
           pybind11-dev python3-pybind11 python3-dev python3-numpy python3-pytest
           nodejs)  # nodejs: the explorer page's script tests (tests/js)
 packages+=("$@")  # what the caller needs besides (scripts/test.sh: the test tools)
@@ -46,7 +46,8 @@ fi
 
 # ALLOYCOLOR_TARGETS: what to build (default: everything, the tests and benchmarks too).
 read -r -a targets <<<"${ALLOYCOLOR_TARGETS:-all}"
-cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+source scripts/ccache.sh
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release "${ccache_args[@]}" >/dev/null
 if [[ ! -x build/app/alloycolor ]]; then
   echo "setup: first build of ${targets[*]} in build/ on $(nproc) cores: everything took about" \
        "15 minutes on 2 cores, the program alone about half of that" >&2

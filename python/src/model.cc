@@ -1,0 +1,102 @@
+// The bindings of models: fits (fit::BuildModel), model files, the model class and its
+// optical constants.
+#include <pybind11/functional.h>
+#include <pybind11/stl.h>
+
+#include <complex>
+#include <utility>
+
+#include "alloycolor/core/output.h"
+#include "alloycolor/core/permittivity.h"
+#include "alloycolor/fit/methods.h"
+#include "alloycolor/model/registry.h"
+#include "bindings.h"
+
+namespace alloycolor::python {
+namespace {
+
+// result[i, j] at x[i], lambda_nm[j]: the index N = n + ik (eq. 13, 14) or eps itself.
+py::array_t<std::complex<double>> ModelOptics(const AlloyModel& model, const Array& x_in,
+                                              const Array& lambda_in, bool index) {
+  const std::vector<double> xs = ToVector(x_in), lambda_nm = ToVector(lambda_in);
+  for (double x : xs) model.CheckInRange(x);
+  py::array_t<std::complex<double>> out(
+      {static_cast<py::ssize_t>(xs.size()), static_cast<py::ssize_t>(lambda_nm.size())});
+  std::complex<double>* data = out.mutable_data();
+  {
+    py::gil_scoped_release release;
+    const std::unique_ptr<BoundModel> bound = model.Bind(lambda_nm);
+    std::vector<double> eps1(lambda_nm.size()), eps2(lambda_nm.size());
+    for (std::size_t i = 0; i < xs.size(); ++i) {
+      bound->Permittivity(xs[i], eps1.data(), eps2.data());
+      for (std::size_t j = 0; j < lambda_nm.size(); ++j) {
+        const Complex<double> e{eps1[j], eps2[j]};
+        const Complex<double> v = index ? IndexFromPermittivity(e) : e;
+        data[i * lambda_nm.size() + j] = {v.re, v.im};
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+ModelClass BindModel(py::module_& m) {
+  m.def("_fit", [](const Dataset& dataset, const std::string& method, int degree, double smoothing,
+                   const std::string& space, const std::string& terms, double lambda_from_nm,
+                   double lambda_to_nm, double lambda_step_nm, bool covariance,
+                   const py::object& progress) {
+    if (method != fit::kAutoMethod) RequireMethod(method);
+    fit::FitSettings settings;
+    ThreadBudget threads;  // every core, as the program's default
+    settings.threads = &threads;
+    settings.degree = degree;
+    settings.smoothing = smoothing;
+    settings.space = space;
+    settings.terms = terms;
+    settings.lambda_from_nm = lambda_from_nm;
+    settings.lambda_to_nm = lambda_to_nm;
+    settings.lambda_step_nm = lambda_step_nm;
+    settings.covariance = covariance;
+    settings.progress = PythonProgress(progress);
+    // As `alloycolor fit`: auto and the sigma calibration score colour under D65, 2 degrees.
+    settings.colorimeter = &GetColorimeter("D65", 2);
+    std::unique_ptr<AlloyModel> model;
+    {
+      py::gil_scoped_release release;
+      model = fit::BuildModel(method, dataset, settings);
+    }
+    return std::shared_ptr<AlloyModel>(std::move(model));
+  });
+
+  m.def("_load_model",
+        [](const std::string& path) { return std::shared_ptr<AlloyModel>(ReadModelFile(path)); });
+
+  ModelClass model(m, "_Model");
+  model.def_property_readonly("method", &AlloyModel::method)
+      .def_property_readonly("system", [](const AlloyModel& a) { return a.system().Name(); })
+      .def_property_readonly("composition", &AlloyModel::composition)
+      .def_property_readonly("x_min", &AlloyModel::x_min)
+      .def_property_readonly("x_max", &AlloyModel::x_max)
+      .def_property_readonly("lambda_min_nm", &AlloyModel::lambda_min_nm)
+      .def_property_readonly("lambda_max_nm", &AlloyModel::lambda_max_nm)
+      .def_property_readonly("warnings", &AlloyModel::warnings)
+      .def_property_readonly("has_uncertainty", &AlloyModel::HasUncertainty)
+      .def_property_readonly("training_x",
+                             [](const AlloyModel& a) {
+                               std::vector<double> xs;
+                               for (const auto& s : a.training_samples()) xs.push_back(s.x_atomic);
+                               return ToArray(xs);
+                             })
+      .def("to_json", [](const AlloyModel& a) { return JsonToPython(a.ToJson()); })
+      .def("save", [](const AlloyModel& a,
+                      const std::string& path) { WriteFileAtomic(path, ModelFileText(a)); })
+      .def("parse_composition",
+           [](const AlloyModel& a, const std::string& text) {
+             return ParseComposition(text, a.system());
+           })
+      .def("_optics", &ModelOptics);
+  return model;
+}
+
+}  // namespace alloycolor::python

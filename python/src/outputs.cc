@@ -1,0 +1,145 @@
+// The bindings of outputs: pictures (render/renderer.h), spectra on the export grid and
+// the renderer files `alloycolor export` writes (export/export_files.h).
+#include <pybind11/stl.h>
+
+#include "alloycolor/color/material_color.h"
+#include "alloycolor/core/output.h"
+#include "alloycolor/export/export_files.h"
+#include "alloycolor/export/spectral_export.h"
+#include "alloycolor/render/image.h"
+#include "alloycolor/render/renderer.h"
+#include "bindings.h"
+
+namespace alloycolor::python {
+namespace {
+
+py::array_t<std::uint8_t> ToNumpy(const render::ImageRGBA8& image) {
+  py::array_t<std::uint8_t> out({image.height, image.width, 4});
+  std::copy(image.rgba.begin(), image.rgba.end(), out.mutable_data());
+  return out;
+}
+
+py::array_t<float> ToNumpy(const render::LinearImage& image) {
+  py::array_t<float> out({image.height, image.width, 4});
+  std::copy(image.rgba.begin(), image.rgba.end(), out.mutable_data());
+  return out;
+}
+
+// One tile as `alloycolor render` shades it: from the guarded table (render::GuardedTable),
+// or by direct spectral evaluation at every pixel. index_on gives n + ik on a colorimeter's
+// grid; label names the material in errors; an empty background is the lighting's default.
+template <typename IndexOn>
+py::object RenderTile(const IndexOn& index_on, const std::string& label, const std::string& shape,
+                      int size, const std::string& lighting, double roughness,
+                      const std::string& background, const std::string& illuminant,
+                      int observer_deg, bool direct, bool linear) {
+  render::RenderOptions options;
+  options.shape = render::ShapeFromName(shape);
+  options.size = size;
+  options.lighting = render::LightingFromName(lighting);
+  options.roughness = roughness;
+  options.background = background.empty() ? render::DefaultBackground(options.lighting)
+                                          : render::BackgroundFromName(background);
+  render::LinearImage image;
+  {
+    py::gil_scoped_release release;
+    const color::Colorimeter& colorimeter = GetColorimeter(illuminant, observer_deg);
+    const render::Renderer renderer(colorimeter, options);
+    const render::DirectReflection reflection = renderer.Direct(index_on(colorimeter));
+    image = direct ? renderer.Render(reflection)
+                   : renderer.Render(render::GuardedTable(reflection, label).table);
+  }
+  return linear ? py::object(ToNumpy(image)) : py::object(ToNumpy(render::EncodeSRGB8(image)));
+}
+
+py::dict SpectraDict(const exports::ConductorSpectra& s) {
+  py::dict d;
+  d["material"] = s.material;
+  d["lambda_nm"] = ToArray(s.lambda_nm);
+  d["n"] = ToArray(s.n);
+  d["k"] = ToArray(s.k);
+  d["notes"] = s.notes;
+  return d;
+}
+
+// Writes the files `alloycolor export` writes, as a set, and returns its --json document
+// with the material's notes. material_on builds the material from the D65 colorimeter.
+template <typename MaterialOn>
+py::object WriteExport(const MaterialOn& material_on, const std::string& prefix,
+                       const std::string& format, const std::string& scene_dir, double roughness) {
+  const exports::ExportSettings settings{format, scene_dir, roughness};
+  nlohmann::json doc;
+  {
+    py::gil_scoped_release release;
+    // As `alloycolor export`: the truth under D65, 2 degrees.
+    const color::Colorimeter& d65 = GetColorimeter("D65", 2);
+    const exports::ExportMaterial material = material_on(d65);
+    const exports::ExportFiles e = exports::BuildExport(d65, material, prefix, settings);
+    WriteFileSetAtomic(e.files);
+    doc = e.summary;
+    doc["notes"] = material.spectra.notes;
+  }
+  return JsonToPython(doc);
+}
+
+}  // namespace
+
+void BindOutputs(py::module_& m, SpectrumClass& spectrum, ModelClass& model) {
+  m.attr("_max_tile_size") = render::kMaxTileSize;
+  spectrum
+      .def("_render",
+           [](const NkSpectrum& nk, const std::string& shape, int size, const std::string& lighting,
+              double roughness, const std::string& background, const std::string& illuminant,
+              int observer_deg, bool direct, bool linear) {
+             return RenderTile(
+                 [&](const color::Colorimeter& c) { return color::IndexOnGrid(c, nk); }, nk.source,
+                 shape, size, lighting, roughness, background, illuminant, observer_deg, direct,
+                 linear);
+           })
+      .def("_export", [](const NkSpectrum& nk, const std::string& prefix, const std::string& format,
+                         const std::string& scene_dir, double roughness) {
+        return WriteExport(
+            [&](const color::Colorimeter& d65) { return exports::MeasuredExportMaterial(d65, nk); },
+            prefix, format, scene_dir, roughness);
+      });
+  model
+      .def("_render",
+           [](const AlloyModel& a, double x, const std::string& shape, int size,
+              const std::string& lighting, double roughness, const std::string& background,
+              const std::string& illuminant, int observer_deg, bool direct, bool linear) {
+             a.CheckInRange(x);
+             return RenderTile(
+                 [&](const color::Colorimeter& c) { return color::IndexOnGrid(c, a, x); },
+                 render::AlloyLabel(a, x), shape, size, lighting, roughness, background, illuminant,
+                 observer_deg, direct, linear);
+           })
+      .def("_spectra",
+           [](const AlloyModel& a, double x, const std::string& material) {
+             a.CheckInRange(x);
+             return SpectraDict(exports::ModelSpectra(a, x, material));
+           })
+      .def("_export",
+           [](const AlloyModel& a, double x, const std::string& origin, const std::string& prefix,
+              const std::string& format, const std::string& scene_dir, double roughness) {
+             a.CheckInRange(x);
+             return WriteExport(
+                 [&](const color::Colorimeter& d65) {
+                   return exports::AlloyExportMaterial(d65, a, x, origin);
+                 },
+                 prefix, format, scene_dir, roughness);
+           })
+      .def("_description",
+           [](const AlloyModel& a, double x, const std::string& origin) {
+             return exports::AlloyDescription(a, x, origin);
+           })
+      .def("_write_spd", [](const AlloyModel& a, double x, const std::string& material,
+                            const std::string& eta_path, const std::string& k_path) {
+        a.CheckInRange(x);
+        const exports::ConductorSpectra s = exports::ModelSpectra(a, x, material);
+        const std::string eta = exports::SpdText(s, true), k = exports::SpdText(s, false);
+        // One set: both replaced or neither; one file given twice is refused.
+        WriteFileSetAtomic({{eta_path, eta}, {k_path, k}});
+      });
+}
+
+}  // namespace alloycolor::python

@@ -3,6 +3,7 @@
 material against the program's own colours (`alloycolor color --json`, srgb8).
 
     blender_test.py --program ALLOYCOLOR --zip alloycolor_material.zip [--blender BLENDER]
+                    [--version X.Y.Z]
 
 BLENDER: default the blender on PATH, else /usr/bin/blender.
 
@@ -13,7 +14,10 @@ transform, 8-bit sRGB PNG) and checks, each within 3 of 8 bits per channel:
   - a pixel near the rim at theta = asin(r) (r: its centre's distance from the axis);
   - the render after the composition property moved by 10 at%, at its new composition,
     and that the move changes the colour by more than 3 (so drift would be seen);
-  - the approximate mode (Principled BSDF, Base Color = F0) at the centre of Cu70Zn30.
+  - the approximate mode (Principled BSDF, Base Color = F0) at the centre of Cu70Zn30;
+  - the material panel, polled and drawn for each material, shows its system and its
+    composition in at%;
+  - with --version, the installed add-on's bl_info version is X.Y.Z.
 Exits 77 (skipped) when Blender is absent."""
 import argparse
 import json
@@ -44,6 +48,7 @@ def main():
     parser.add_argument("--program", required=True)
     parser.add_argument("--zip", required=True)
     parser.add_argument("--blender", default=shutil.which("blender") or "/usr/bin/blender")
+    parser.add_argument("--version", help="the add-on's version expected (x.y.z)")
     o = parser.parse_args()
     if not os.path.exists(o.blender):
         print("Blender is absent (%s; Debian package blender): skipped" % o.blender)
@@ -61,6 +66,18 @@ def colour(o, model, x, angle):
     doc = json.loads(run([o.program, "color", "--model", model, "--x", str(x), "--angle",
                           "%.6f" % angle, "--json"]))
     return doc["srgb8"], doc["x"]
+
+
+def panel_failures(what, system, result):
+    """The panel as drawn for a material: its first line names the system, and it shows the
+    composition in at% (the unit the materials keep)."""
+    drawn = result["panel"]
+    at_percent = 100.0 * result["x_atomic"]
+    if not drawn or not str(drawn[0]).startswith(system + ","):
+        return ["%s: the panel drew %r" % (what, drawn)]
+    if not any(isinstance(v, float) and abs(v - at_percent) < 1e-3 for v in drawn):
+        return ["%s: the panel shows %r, not %.4f at%%" % (what, drawn, at_percent)]
+    return []
 
 
 def check(o, tmp):
@@ -123,6 +140,8 @@ def check(o, tmp):
         for (_, angle), got in zip(rims, result["pixels"][1:]):
             checks.append(("rim at %.2f deg" % angle, colour(o, model, x_text, angle)[0], got))
         rendered[what] = result["pixels"][0]
+        failures += panel_failures(what, system, result)
+        print("%-22s panel: %s" % (what, " | ".join(str(v) for v in result["panel"])))
         if abs(result["x_atomic"] - x) > 1e-6:
             failures.append("%s: the material is at x = %.6f, the program's is %.6f"
                             % (what, result["x_atomic"], x))
@@ -137,6 +156,9 @@ def check(o, tmp):
     print("10 at%% more gold changes the centre pixel by %d" % moved)
     if moved <= TOLERANCE:
         failures.append("10 at%% more gold changes the colour by only %d" % moved)
+    if o.version and out["addon_version"] != [int(p) for p in o.version.split(".")]:
+        failures.append("the installed add-on is version %s, not %s"
+                        % (out["addon_version"], o.version))
     print("Blender %s: %.1f s in Blender, %.1f s in all" % (out["blender"], blender_seconds,
                                                             time.time() - start))
     for f in failures:

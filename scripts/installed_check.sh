@@ -83,10 +83,11 @@ elif ((blender_status != 0)); then
 fi
 blended=$SECONDS
 
-files=$(dpkg -L alloycolor | while read -r f; do [[ -f $f ]] && echo "$f"; done)
+files=$(dpkg -L alloycolor | while read -r f; do if [[ -f $f ]]; then echo "$f"; fi; done)
 "${sudo_cmd[@]}" dpkg -r alloycolor >/dev/null
-left=$(for f in $files /usr/lib/python3/dist-packages/alloycolor /usr/share/alloycolor; do
-         [[ -e $f ]] && echo "$f"; done || true)
+left=$(for f in $files /usr/lib/python3/dist-packages/alloycolor /usr/share/alloycolor \
+                /usr/include/alloycolor /usr/lib/cmake/alloycolor; do
+         if [[ -e $f ]]; then echo "$f"; fi; done)
 if [[ -n $left ]]; then
   echo "installed_check: dpkg -r alloycolor left: $left" >&2
   exit 1

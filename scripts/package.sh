@@ -30,10 +30,18 @@ cpack --config build/CPackConfig.cmake -G DEB -B build-pkg/deb >/dev/null
 mv build-pkg/deb/alloycolor_"$version"_*.deb dist/
 debbed=$SECONDS
 
-# The wheel, by setup.py's CMake build in build-pkg/ through ccache (scripts/ccache.sh).
+# The wheel, by setup.py's CMake build in build-pkg/ through ccache (scripts/ccache.sh),
+# which says how many of its compilations came from the cache.
 source scripts/ccache.sh
-CMAKE_ARGS="${ccache_args[*]}" "$python" -m build --wheel --no-isolation --outdir dist . \
-  >build-pkg/wheel.log 2>&1 || { cat build-pkg/wheel.log >&2; exit 1; }
+stats=$PWD/build-pkg/ccache-stats.log
+rm -f "$stats"
+CCACHE_STATSLOG=$stats CMAKE_ARGS="${ccache_args[*]}" \
+  "$python" -m build --wheel --no-isolation --outdir dist . >build-pkg/wheel.log 2>&1 ||
+  { cat build-pkg/wheel.log >&2; exit 1; }
+if [[ -s $stats ]]; then
+  echo "package: the wheel's compilations from ccache:" \
+       "$(CCACHE_STATSLOG=$stats ccache --show-log-stats | sed -n 's/^ *Hits: *//p' | head -1)"
+fi
 
 ls -l dist/alloycolor-"$version"-*.whl dist/alloycolor_"$version"_*.deb \
       dist/alloycolor_material-"$version".zip

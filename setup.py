@@ -42,6 +42,9 @@ class CMakeBuild(build_ext):
     """Builds the extension with CMake and copies the whole package beside it."""
 
     def build_extension(self, ext):
+        if self.inplace or getattr(self, "editable_mode", False):
+            sys.exit("setup.py: no editable install (pip install -e): the package is assembled "
+                     "by CMake; use PYTHONPATH=build/python after building (docs/python.md)")
         if shutil.which("cmake") is None:
             sys.exit("setup.py: cmake not found (Debian: apt-get install cmake ninja-build, "
                      "and the libraries scripts/setup.sh lists)")

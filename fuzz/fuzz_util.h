@@ -2,7 +2,7 @@
 // paths), the colour chain run on whatever a reader accepts, and the checks that turn a
 // silent fault into a crash the fuzzer reports:
 //  - a reader either returns a valid value or throws alloycolor::Error with a one-line
-//    message (any other exception escapes and aborts);
+//    message in valid UTF-8 (any other exception escapes and aborts);
 //  - a spectrum or model it accepts gives finite n, k and a finite colour.
 #ifndef ALLOYCOLOR_FUZZ_FUZZ_UTIL_H_
 #define ALLOYCOLOR_FUZZ_FUZZ_UTIL_H_
@@ -25,6 +25,7 @@
 #include "alloycolor/color/material_color.h"
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/spectrum.h"
+#include "alloycolor/core/text.h"
 #include "alloycolor/model/alloy_model.h"
 
 namespace alloycolor::fuzz {
@@ -82,6 +83,9 @@ inline void CheckMessage(const Error& error, const std::string& culprit) {
   const std::string message = error.what();
   Require(!message.empty(), "empty error message");
   Require(message.find('\n') == std::string::npos, "error message spans lines: " + message);
+  // Valid UTF-8 without control characters: a file's bytes never reach a message raw.
+  Require(SafeText(message, std::string::npos) == message,
+          "error message carries raw bytes: " + SafeText(message, 300));
   if (!culprit.empty()) {
     Require(message.find(culprit) != std::string::npos,
             "error message does not name " + culprit + ": " + message);

@@ -60,7 +60,15 @@ bool IsNonFiniteWord(std::string_view field) {
 // A field as a finite number; the message tells a non-number from a non-finite one.
 double ParseField(std::string_view field, const std::string& name, const std::string& at) {
   double value = 0;
-  if (ParseFiniteDouble(field, &value)) return value;
+  if (ParseFiniteDouble(field, &value)) {
+    if (value != 0 && std::abs(value) < kSmallestMeasuredValue) {
+      Fail(at + name + " = " + Quote(field) + " is not a measured value: nonzero but below " +
+           FormatNumber(kSmallestMeasuredValue) +
+           (std::abs(value) < 2.2250738585072014e-308 ? " (a denormal number)" : "") +
+           "; write 0 if it is zero");
+    }
+    return value;
+  }
   if (IsNonFiniteWord(field)) Fail(at + name + " is " + Quote(field) + ", not a finite number");
   Fail(at + "cannot parse number " + Quote(field) + " (" + name + ")");
 }
@@ -261,7 +269,32 @@ std::string ReadFileText(const std::string& path) {
     text.append(buffer, static_cast<std::size_t>(got));
   }
   close(fd);
+  CheckTextEncoding(path, text);
   return text;
+}
+
+void CheckTextEncoding(const std::string& path, std::string_view text) {
+  const auto starts = [&](std::string_view prefix) {
+    return text.substr(0, prefix.size()) == prefix;
+  };
+  const auto nul = [&](std::size_t i) { return i < text.size() && text[i] == '\0'; };
+  const auto text_byte = [&](std::size_t i) { return i < text.size() && text[i] != '\0'; };
+  std::string encoding;
+  if (starts(std::string_view("\xFF\xFE\0\0", 4)) || starts(std::string_view("\0\0\xFE\xFF", 4))) {
+    encoding = "UTF-32 text (it begins with a UTF-32 byte order mark)";
+  } else if (starts("\xFF\xFE") || starts("\xFE\xFF")) {
+    encoding = std::string("UTF-16 text (") + (starts("\xFF\xFE") ? "little" : "big") +
+               "-endian: it begins with a UTF-16 byte order mark)";
+  } else if (text_byte(0) && nul(1) && text_byte(2) && nul(3)) {
+    // Without a mark: ASCII in UTF-16 has a NUL in every other byte.
+    encoding = "UTF-16 text (little-endian, without a byte order mark)";
+  } else if (nul(0) && text_byte(1) && nul(2) && text_byte(3)) {
+    encoding = "UTF-16 text (big-endian, without a byte order mark)";
+  }
+  if (!encoding.empty()) {
+    Fail(path + ":1: the file is " + encoding +
+         "; save it as UTF-8 (or ASCII) text so that its header and values can be read");
+  }
 }
 
 std::string Fnv1a64Hex(const std::string& bytes) {

@@ -152,8 +152,18 @@ constexpr std::size_t kMaxYamlBytes = 8u << 20;
 
 // YAML 1.2 requires the keys of a mapping to be unique; yaml-cpp keeps both and finds the
 // first. A file that gives a key twice is refused, naming the second one's line.
-void RejectDuplicateYamlKeys(const std::string& path, const YAML::Node& node, int depth) {
+// *budget counts the nodes still to be visited: a file without aliases has fewer nodes than
+// bytes, so a walk that runs past its size meets aliases of aliases (a "billion laughs"
+// file, whose 1 KB would take minutes to walk) and is refused at once.
+void RejectDuplicateYamlKeys(const std::string& path, const YAML::Node& node, int depth,
+                             std::size_t* budget) {
   if (depth > 64) Fail(path + ":" + std::to_string(MarkLine(node.Mark())) + ": nested too deeply");
+  if (*budget == 0) {
+    Fail(path + ":" + std::to_string(MarkLine(node.Mark())) +
+         ": its aliases ('*name') expand to more nodes than the file has bytes; a "
+         "refractiveindex.info file needs no aliases (write the values out)");
+  }
+  --*budget;
   if (node.IsMap()) {
     std::set<std::string> keys;
     for (const auto& pair : node) {
@@ -164,10 +174,10 @@ void RejectDuplicateYamlKeys(const std::string& path, const YAML::Node& node, in
                Quote(key) + " (YAML keys must be unique)");
         }
       }
-      RejectDuplicateYamlKeys(path, pair.second, depth + 1);
+      RejectDuplicateYamlKeys(path, pair.second, depth + 1, budget);
     }
   } else if (node.IsSequence()) {
-    for (const auto& item : node) RejectDuplicateYamlKeys(path, item, depth + 1);
+    for (const auto& item : node) RejectDuplicateYamlKeys(path, item, depth + 1, budget);
   }
 }
 
@@ -233,7 +243,8 @@ std::vector<Entry> YamlEntries(const std::string& path, const std::string& text,
     Fail((MarkLine(e.mark) > 0 ? path + ":" + std::to_string(MarkLine(e.mark)) : path) +
          ": invalid YAML: " + e.msg);
   }
-  RejectDuplicateYamlKeys(path, root, 0);
+  std::size_t budget = text.size() + 16;
+  RejectDuplicateYamlKeys(path, root, 0, &budget);
   if (!root.IsMap()) Fail(path + ": not a refractiveindex.info file (no DATA list)");
   const YAML::Node list = root["DATA"];
   if (!list) Fail(path + ": not a refractiveindex.info file (no DATA list)");

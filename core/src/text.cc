@@ -4,6 +4,8 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <ctime>
 #include <system_error>
 
 #include "alloycolor/core/error.h"
@@ -13,32 +15,67 @@ namespace {
 
 bool IsBlank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
 
+// The length of the well-formed UTF-8 sequence at the start of text (RFC 3629: no
+// overlong forms, no surrogates, nothing past U+10FFFF), or 0 when there is none.
+std::size_t Utf8SequenceLength(std::string_view text) {
+  const auto byte = [&](std::size_t i) { return static_cast<unsigned char>(text[i]); };
+  const unsigned char lead = byte(0);
+  if (lead < 0x80) return 1;
+  std::size_t length = 0;
+  unsigned char lo = 0x80, hi = 0xBF;  // the range of the second byte
+  if (lead >= 0xC2 && lead <= 0xDF) {
+    length = 2;
+  } else if (lead >= 0xE0 && lead <= 0xEF) {
+    length = 3;
+    if (lead == 0xE0) lo = 0xA0;
+    if (lead == 0xED) hi = 0x9F;
+  } else if (lead >= 0xF0 && lead <= 0xF4) {
+    length = 4;
+    if (lead == 0xF0) lo = 0x90;
+    if (lead == 0xF4) hi = 0x8F;
+  } else {
+    return 0;
+  }
+  if (text.size() < length || byte(1) < lo || byte(1) > hi) return 0;
+  for (std::size_t i = 2; i < length; ++i) {
+    if (byte(i) < 0x80 || byte(i) > 0xBF) return 0;
+  }
+  return length;
+}
+
 }  // namespace
 
-void Fail(std::string message) {
-  for (char& c : message) {
-    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
-  }
-  throw Error(message);
-}
-
-std::string Quote(std::string_view text, std::size_t max_chars) {
-  if (text.size() <= max_chars) return "'" + std::string(text) + "'";
-  return "'" + std::string(text.substr(0, max_chars)) + "...'";
-}
-
-std::string MessageLine(std::string_view text, std::size_t max_chars) {
+std::string SafeText(std::string_view text, std::size_t max_chars) {
   std::string line;
   line.reserve(std::min(text.size(), max_chars + 3));
-  for (const char c : text) {
-    if (line.size() >= max_chars) {
+  std::size_t chars = 0;
+  while (!text.empty()) {
+    if (chars >= max_chars) {
       line += "...";
       break;
     }
-    const unsigned char u = static_cast<unsigned char>(c);
-    line += (u < 0x20 || u == 0x7f) ? '?' : c;
+    const std::size_t length = Utf8SequenceLength(text);
+    const unsigned char u = static_cast<unsigned char>(text.front());
+    if (length == 0 || u < 0x20 || u == 0x7f) {
+      line += '?';
+      text.remove_prefix(1);
+    } else {
+      line.append(text.substr(0, length));
+      text.remove_prefix(length);
+    }
+    ++chars;
   }
   return line;
+}
+
+void Fail(std::string message) { throw Error(SafeText(message, std::string::npos)); }
+
+std::string Quote(std::string_view text, std::size_t max_chars) {
+  return "'" + SafeText(text, max_chars) + "'";
+}
+
+std::string MessageLine(std::string_view text, std::size_t max_chars) {
+  return SafeText(text, max_chars);
 }
 
 std::string FormatNumber(double value) {
@@ -113,6 +150,19 @@ std::string NearestName(std::string_view word, const std::vector<std::string>& n
       nearest = name;
     }
   }
+  if (!nearest.empty()) return nearest;
+  // Failing that, a name of three letters or more that begins the word or that the word
+  // begins ("output" for "out", "obs" for "observer"): the longest shared start wins.
+  std::size_t longest = 0;
+  for (const std::string& name : names) {
+    const std::string lower_name = Lower(name);
+    const std::size_t shared = std::min(lower_name.size(), lower_word.size());
+    if (shared < 3 || shared <= longest || name.size() > kMaxLength) continue;
+    if (lower_name.compare(0, shared, lower_word, 0, shared) == 0) {
+      longest = shared;
+      nearest = name;
+    }
+  }
   return nearest;
 }
 
@@ -134,6 +184,24 @@ std::vector<std::string_view> Lines(std::string_view text) {
 int LineOfByte(std::string_view text, std::size_t byte) {
   byte = std::min(byte, text.size());
   return 1 + static_cast<int>(std::count(text.begin(), text.begin() + byte, '\n'));
+}
+
+std::string IsoDateUtc(long long seconds_since_epoch) {
+  const std::time_t t = static_cast<std::time_t>(seconds_since_epoch);
+  std::tm utc{};
+  if (gmtime_r(&t, &utc) == nullptr) return "";
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &utc);
+  return text;
+}
+
+std::string NowUtcIso8601() {
+  const char* fixed = std::getenv("SOURCE_DATE_EPOCH");
+  double seconds = 0;
+  if (fixed != nullptr && ParseFiniteDouble(fixed, &seconds) && seconds >= 0 && seconds < 1e11) {
+    return IsoDateUtc(static_cast<long long>(seconds));
+  }
+  return IsoDateUtc(static_cast<long long>(std::time(nullptr)));
 }
 
 }  // namespace alloycolor

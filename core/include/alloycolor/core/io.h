@@ -23,12 +23,15 @@
 //    and no choice is refused with a one-line message saying what was seen and how to say
 //    what it is.
 // Every reader returns an NkSpectrum on ascending nm. Every error names the file, and the
-// line where there is one. n and k must lie in [0, kMaxOpticalConstant], eps2 >= 0. A
-// wavelength repeated is averaged with a warning (real files do this).
+// line where there is one. n and k must lie in [0, kMaxOpticalConstant], eps2 >= 0; no
+// number may be nonzero and below kSmallestMeasuredValue. Wavelengths in a column whose
+// header says nm that all lie under 20 (or in um, all over 100) are refused as the other
+// unit. A wavelength repeated is averaged with a warning (real files do this).
 #ifndef ALLOYCOLOR_CORE_IO_H_
 #define ALLOYCOLOR_CORE_IO_H_
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "alloycolor/core/spectrum.h"
@@ -40,6 +43,10 @@ class OutputGuard;
 // The largest n or k a reader accepts. Metals reach k ~ 1e3 in the far infrared; above
 // 1e77, |eps|^2 overflows a double and reflectance becomes NaN.
 inline constexpr double kMaxOpticalConstant = 1e6;
+// The smallest magnitude a number in a data file may have besides 0: no instrument
+// measures n, k, eps, R or a wavelength to 1e-30, and a denormal (k = 1e-320) is a value
+// of the wrong kind (a damaged export), refused with its file and line.
+inline constexpr double kSmallestMeasuredValue = 1e-30;
 
 // The columns of a delimited file that hold the wanted sample: each a header name
 // ("n6", matched exactly, else ignoring case) or a 1-based column number ("2"). Both
@@ -102,7 +109,14 @@ inline constexpr long long kMaxInputFileBytes = 256LL << 20;
 // regular file (a FIFO, a device) or is over kMaxInputFileBytes. Reading has no other
 // effect: a program that must not overwrite its inputs notes them in its OutputGuard
 // (output.h).
+// The text is checked with CheckTextEncoding.
 std::string ReadFileText(const std::string& path);
+
+// Throws Error naming the file and its encoding when text is UTF-16 or UTF-32 (by its
+// byte order mark, or without one by a NUL in every other byte of its start): every
+// reader of this library reads UTF-8 (or ASCII) text. (A stray NUL byte elsewhere is left
+// to the readers, which name its line.)
+void CheckTextEncoding(const std::string& path, std::string_view text);
 
 // Writes through a temporary file in the same folder renamed into place, so that a
 // failed or interrupted write never leaves a damaged file nor destroys the old one;

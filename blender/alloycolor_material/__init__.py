@@ -50,26 +50,16 @@ BLENDER_4 = bpy.app.version >= (4, 0, 0)
 
 # ---- compositions -------------------------------------------------------------------------
 
-def weight_fraction(x, masses):
-    """Weight fraction of the first element at atomic fraction x."""
-    a, b = x * masses[0], (1.0 - x) * masses[1]
-    return a / (a + b) if a + b > 0 else 0.0
-
-
-def atomic_fraction(w, masses):
-    """Atomic fraction of the first element at weight fraction w."""
-    a, b = w / masses[0], (1.0 - w) / masses[1]
-    return a / (a + b) if a + b > 0 else 0.0
+from .compositions import KARAT_RANGE, PERCENT_RANGE, atomic_fraction, weight_fraction
+from .compositions import karat_from_x, x_from_karat as _x_from_karat
 
 
 def karat_of(x, settings):
-    w = weight_fraction(x, settings.molar_masses)
-    return 24.0 * (w if settings.gold_element == 0 else 1.0 - w)
+    return karat_from_x(x, settings.molar_masses, settings.gold_element)
 
 
 def x_of_karat(k, settings):
-    w = k / 24.0
-    return atomic_fraction(w if settings.gold_element == 0 else 1.0 - w, settings.molar_masses)
+    return _x_from_karat(k, settings.molar_masses, settings.gold_element)
 
 
 def table_settings(material):
@@ -346,11 +336,14 @@ class AlloycolorMaterialSettings(bpy.types.PropertyGroup):
     table_file: StringProperty(subtype="FILE_PATH")
     unit: EnumProperty(name="Unit", items=_units)
     at_percent: FloatProperty(name="Composition", description="Atomic percent of the first "
-                              "element", min=0.0, max=100.0, precision=2, update=_on_at)
+                              "element", min=PERCENT_RANGE[0], max=PERCENT_RANGE[1], precision=2,
+                              update=_on_at)
     wt_percent: FloatProperty(name="Composition", description="Weight percent of the first "
-                              "element", min=0.0, max=100.0, precision=2, update=_on_wt)
+                              "element", min=PERCENT_RANGE[0], max=PERCENT_RANGE[1], precision=2,
+                              update=_on_wt)
     karat: FloatProperty(name="Karat", description="24 x the weight fraction of gold",
-                         min=0.0, max=24.0, precision=2, update=_on_karat)
+                         min=KARAT_RANGE[0], max=KARAT_RANGE[1], precision=2,
+                         update=_on_karat)
     mode: EnumProperty(name="Mode", items=[
         ("TABLE", "Table", "Exact colour at every angle: the table on a mirror Glossy BSDF"),
         ("APPROXIMATE", "Approximate", "Principled BSDF, Metallic 1, Base Color = F0 (and the "

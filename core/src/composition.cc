@@ -183,6 +183,10 @@ bool IsGold(const Element& element) { return std::string_view(element.symbol) ==
 double ParseComposition(const std::string& text, const AlloySystem& system) {
   const std::string_view trimmed = Trim(text);
   const std::string quoted = "composition " + Quote(text);
+  if (trimmed.size() > kMaxCompositionChars) {
+    Fail(quoted + " is " + std::to_string(trimmed.size()) + " characters long; a composition " +
+         "has at most " + std::to_string(kMaxCompositionChars) + " (" + kAcceptedForms + ")");
+  }
   std::string lower(trimmed);
   for (char& c : lower) {
     if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
@@ -231,6 +235,30 @@ double ParseComposition(const std::string& text, const AlloySystem& system) {
     Fail(quoted + " lies outside [0, 1] (an atomic fraction; write at% or wt% for percent)");
   }
   return value;
+}
+
+std::string DecimalCommaReading(const std::vector<std::string>& parts, std::size_t failed,
+                                const AlloySystem& system) {
+  const auto digits = [](std::string_view t) {
+    return !t.empty() && t.find_first_not_of("0123456789") == std::string_view::npos;
+  };
+  const auto starts_with_digit = [](std::string_view t) {
+    return !t.empty() && t.front() >= '0' && t.front() <= '9';
+  };
+  // (integer part, fraction part) pairs that take in the part that failed.
+  for (const std::size_t left : {failed - 1, failed}) {
+    if (failed == 0 && left != failed) continue;
+    if (left + 1 >= parts.size()) continue;
+    const std::string_view whole = Trim(parts[left]), fraction = Trim(parts[left + 1]);
+    if (!digits(whole) || !starts_with_digit(fraction)) continue;
+    const std::string joined = std::string(whole) + "." + std::string(fraction);
+    try {
+      ParseComposition(joined, system);
+      return joined;
+    } catch (const Error&) {
+    }
+  }
+  return "";
 }
 
 bool IsGoldAlloy(const AlloySystem& system) { return IsGold(system.a) || IsGold(system.b); }

@@ -19,27 +19,46 @@ const near = (actual, expected, tolerance, what) =>
   assert.ok(Math.abs(actual - expected) <= tolerance, `${what}: ${actual} vs ${expected} ± ${tolerance}`);
 
 test("compositions: fraction, at%, wt% and karat", () => {
-  for (const [text, x] of [["0.75", 0.75], [".5", 0.5], ["75%", 0.75], ["75 at%", 0.75], [" 7.5AT% ", 0.075],
-                           ["1", 1], ["0", 0]]) {
+  for (const [text, x] of [["0.75", 0.75], [".5", 0.5], ["75at%", 0.75], ["75 at%", 0.75], [" 7.5AT% ", 0.075],
+                           ["1", 1], ["0", 0], ["+0.5", 0.5], ["5e-1", 0.5], ["1.", 1]]) {
     near(I.parseComposition(text, AU_AG), x, 1e-15, text);
   }
   near(I.parseComposition("75wt%", AU_AG), X_18K, 1e-6, "75wt%");
-  for (const text of ["18k", "18K", "18 kt", "18karat"]) near(I.parseComposition(text, AU_AG), X_18K, 1e-6, text);
+  for (const text of ["18k", "18K", "18 kt", "\t18kt"]) near(I.parseComposition(text, AU_AG), X_18K, 1e-6, text);
   // With gold as element b the karat is 1 - w of element a.
   near(I.parseComposition("18k", AG_AU), 1 - X_18K, 1e-6, "18k, gold as b");
   assert.ok(Number.isNaN(I.parseComposition("18k", CU_ZN)), "karat without gold");
 });
 
+// As the library (core/src/composition.cc) refuses them; tests/composition_parsers_test.cc
+// checks the two against each other on tests/reference/composition_inputs.json.
 test("compositions: anything else is refused", () => {
-  for (const text of ["", "abc", "-0.5", "1e-3", "0.5.5", "50 % Au", "18kk", "0x10", "<img src=x onerror=alert(1)>",
-                      "0.5;alert(1)", null, undefined]) {
+  for (const text of ["", "abc", "-0.5", "0.5.5", "50 % Au", "18kk", "0x10", "<img src=x onerror=alert(1)>",
+                      "0.5;alert(1)", null, undefined, "75%", "18karat", "0.5\n", "+-0.5", "1e400", "1e-400",
+                      "25k", "101at%", "75", "0,75", "7 5at%"]) {
     assert.ok(Number.isNaN(I.parseComposition(text, AU_AG)), JSON.stringify(text));
   }
   // In range only, and clamped into it within rounding.
   const ctx = { ...CTX, x_range: [0.2, 0.8] };
   assert.ok(Number.isNaN(I.compositionInRange("0.9", ctx)));
   assert.strictEqual(I.compositionInRange("0.8000000001", ctx), 0.8);
-  assert.strictEqual(I.compositionInRange("50%", ctx), 0.5);
+  assert.strictEqual(I.compositionInRange("50at%", ctx), 0.5);
+});
+
+// The length is bounded (the library's 64 characters) before any parsing: a valid number
+// written longer is refused, and so is a run of 30,000 digits in the address or the
+// colour box (a link that froze the page for seconds when the parser was quadratic).
+test("inputs are bounded in length", () => {
+  const long = "0." + "0".repeat(I.MAX_COMPOSITION_CHARS) + "5";
+  assert.ok(Number.isNaN(I.parseComposition(long, AU_AG)));
+  near(I.parseComposition("0." + "0".repeat(I.MAX_COMPOSITION_CHARS - 3) + "5", AU_AG), 0, 1e-60, "64 characters");
+  const digits = "1".repeat(30000);
+  for (const text of [digits, digits + "k", digits + "x", "." + digits + "at%"]) {
+    assert.ok(Number.isNaN(I.parseComposition(text, AU_AG)), text.slice(-4));
+  }
+  assert.deepStrictEqual(I.parseAddress("#x=" + digits.slice(0, 1000) + "k", CTX).bad, ["x"]);
+  assert.deepStrictEqual(I.parseAddress("#x=" + digits + "k", CTX).bad, ["address"]);
+  assert.strictEqual(I.parseColourTarget(digits + "," + digits + "," + digits), null);
 });
 
 test("a composition is described by karat for gold, else by at%", () => {

@@ -21,6 +21,7 @@
 #ifndef ALLOYCOLOR_CORE_COMPOSITION_H_
 #define ALLOYCOLOR_CORE_COMPOSITION_H_
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -54,8 +55,17 @@ double WeightFromAtomicFraction(double x_a, const AlloySystem& system);
 // Parses a composition of element a as written on a command line: an atomic fraction
 // ("0.75"), atomic percent ("75at%"), weight percent ("75wt%") or, for gold alloys, a
 // karat ("18k": 18/24 of the weight is gold). Returns x_atomic; throws Error naming the
-// text when it cannot be read or lies outside [0, 1].
+// text when it cannot be read, lies outside [0, 1] or is longer than
+// kMaxCompositionChars (the explorer page's parser, app/explore/input.js, follows the
+// same rules and bound: tests/reference/compositions.txt is the list both are tested on).
+inline constexpr std::size_t kMaxCompositionChars = 64;
 double ParseComposition(const std::string& text, const AlloySystem& system);
+
+// A list of compositions split at its commas, `parts`, of which parts[failed] could not
+// be read: when it and a neighbour are the two halves of a number written with a decimal
+// comma ("0,75" split as "0" and "75"), the composition meant ("0.75"), else "".
+std::string DecimalCommaReading(const std::vector<std::string>& parts, std::size_t failed,
+                                const AlloySystem& system);
 
 // Whether one of the two elements is gold, and the karat (24 x the weight fraction of
 // gold) at atomic fraction x_a: the inverse of ParseComposition's "18k"; NaN otherwise.

@@ -40,6 +40,36 @@ std::vector<double> Three(const std::string& text, const std::string& option) {
   return v;
 }
 
+// The target of --lab, --xyz or --hex as CIELAB, checked as match.h says (CheckTargetLab);
+// every message names the option and blames the target.
+color::Lab ColourTarget(const MatchCommandOptions& o, const color::Colorimeter& colorimeter,
+                        std::string* target_text) {
+  const std::string option = !o.lab.empty() ? "--lab" : !o.xyz.empty() ? "--xyz" : "--hex";
+  try {
+    color::Lab target{};
+    if (!o.lab.empty()) {
+      const std::vector<double> v = Three(o.lab, "--lab");
+      target = {v[0], v[1], v[2]};
+      *target_text =
+          "L*a*b* " + FormatNumber(v[0]) + "," + FormatNumber(v[1]) + "," + FormatNumber(v[2]);
+    } else if (!o.xyz.empty()) {
+      const std::vector<double> v = Three(o.xyz, "--xyz");
+      target = color::LabFromTargetXYZ(colorimeter, {v[0], v[1], v[2]});
+      *target_text =
+          "XYZ " + FormatNumber(v[0]) + "," + FormatNumber(v[1]) + "," + FormatNumber(v[2]);
+    } else {
+      target = color::LabFromHex(colorimeter, o.hex);
+      *target_text = "sRGB " + MessageLine(o.hex, 20);
+    }
+    color::CheckTargetLab(target);
+    return target;
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    if (what.rfind(option + ":", 0) == 0) throw;
+    throw Error(option + ": " + what);
+  }
+}
+
 nlohmann::json NumberOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nullptr; }
 
 std::string SigmaText(double x_sigma) {
@@ -81,18 +111,8 @@ void Run(const MatchCommandOptions& o) {
   MeasuredReflectance spectrum;
   std::string target_text;
   std::vector<std::string> warnings;
-  if (!o.lab.empty()) {
-    const std::vector<double> v = Three(o.lab, "--lab");
-    target = {v[0], v[1], v[2]};
-    target_text =
-        "L*a*b* " + FormatNumber(v[0]) + "," + FormatNumber(v[1]) + "," + FormatNumber(v[2]);
-  } else if (!o.xyz.empty()) {
-    const std::vector<double> v = Three(o.xyz, "--xyz");
-    target = color::LabFromTargetXYZ(colorimeter, {v[0], v[1], v[2]});
-    target_text = "XYZ " + FormatNumber(v[0]) + "," + FormatNumber(v[1]) + "," + FormatNumber(v[2]);
-  } else if (!o.hex.empty()) {
-    target = color::LabFromHex(colorimeter, o.hex);
-    target_text = "sRGB " + MessageLine(o.hex, 20);
+  if (!o.lab.empty() || !o.xyz.empty() || !o.hex.empty()) {
+    target = ColourTarget(o, colorimeter, &target_text);
   } else if (!o.nk.empty()) {
     const NkSpectrum nk =
         ReadNkFile(o.nk, o.columns.empty() ? NkColumns{} : ParseNkColumns(o.columns), &warnings);

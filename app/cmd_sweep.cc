@@ -184,7 +184,8 @@ void Run(const SweepOptions& o) {
   }
   color::ColorSweep& sweep = *made;
   const bool table = !o.exact && o.steps >= kTableMinSteps && from != to &&
-                     sweep.BuildTable(from, to, color::kSweepTableTolerance);
+                     sweep.BuildTable(from, to, color::kSweepTableTolerance,
+                                      static_cast<int>(std::min<long long>(o.steps, 1 << 30)));
   const color::XYZ white = colorimeter.White();
   const bool json = o.format == "json";
 

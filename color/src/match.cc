@@ -1,6 +1,7 @@
 #include "alloycolor/color/match.h"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <functional>
@@ -103,9 +104,20 @@ std::vector<size_t> LocalMinima(const std::vector<double>& d) {
 std::vector<Match> Minimise(const std::vector<double>& scan_x, const std::vector<double>& scan_d,
                             const std::function<double(double)>& exact, double margin,
                             const std::string& what, const std::vector<char>* consider = nullptr) {
-  std::vector<Match> found;
+  std::vector<size_t> minima;
   for (const size_t i : LocalMinima(scan_d)) {
-    if (consider != nullptr && !(*consider)[i]) continue;
+    if (consider == nullptr || (*consider)[i]) minima.push_back(i);
+  }
+  // A model whose colour swings back and forth (a crafted file: interband widths near a
+  // pole) has hundreds of minima; the kMaxRefinedMinima lowest of the scan are refined, so
+  // that the work is bounded whatever the model.
+  if (minima.size() > kMaxRefinedMinima) {
+    std::nth_element(minima.begin(), minima.begin() + kMaxRefinedMinima, minima.end(),
+                     [&](size_t a, size_t b) { return scan_d[a] < scan_d[b]; });
+    minima.resize(kMaxRefinedMinima);
+  }
+  std::vector<Match> found;
+  for (const size_t i : minima) {
     const double lo = scan_x[i == 0 ? 0 : i - 1];
     const double hi = scan_x[std::min(i + 1, scan_x.size() - 1)];
     Match m;
@@ -179,7 +191,9 @@ ColourMatcher::ColourMatcher(const Colorimeter& colorimeter, const AlloyModel& m
   }
   sweep_ = std::make_unique<ColorSweep>(colorimeter, model, options.angle_deg);
   const double lo = model.x_min(), hi = model.x_max();
-  if (hi > lo) sweep_->BuildTable(lo, hi);  // else (or failing) exact evaluation
+  // The table serves the scan alone: it may cost no more than the scan's exact evaluations
+  // (else, or failing, exact evaluation).
+  if (hi > lo) sweep_->BuildTable(lo, hi, kSweepTableTolerance, options.scan_points);
   const std::vector<double> uniform = UniformScan(lo, hi, options.scan_points);
   // The colour scan: the first and last of the uniform scan and each point where the colour
   // has moved kColourScanStep along its path since the last one kept, or kColourScanGap in x.
@@ -242,11 +256,25 @@ void ColourMatcher::Finish(Match* m) const {
   }
 }
 
-std::vector<Match> ColourMatcher::Find(const Lab& target) const {
-  if (!Finite(target)) {
-    throw Error("match: the target colour L*a*b* = " + FormatNumber(target.L) + "," +
-                FormatNumber(target.a) + "," + FormatNumber(target.b) + " is not finite");
+void CheckTargetLab(const Lab& target) {
+  const std::string lab = "the target L*a*b* " + FormatNumber(target.L) + "," +
+                          FormatNumber(target.a) + "," + FormatNumber(target.b);
+  if (!Finite(target)) throw Error(lab + " is not finite");
+  if (!(target.L >= 0 && target.L <= kMaxTargetL)) {
+    throw Error(lab + ": L* = " + FormatNumber(target.L) + " lies outside 0-" +
+                FormatNumber(kMaxTargetL) + " (100 is a perfect white reflector)");
   }
+  for (const double v : {target.a, target.b}) {
+    if (!(std::abs(v) <= kMaxTargetAB)) {
+      throw Error(lab + ": " + (v == target.a ? "a* = " : "b* = ") + FormatNumber(v) +
+                  " lies outside -" + FormatNumber(kMaxTargetAB) + " to " +
+                  FormatNumber(kMaxTargetAB) + " (no colour lies that far from grey)");
+    }
+  }
+}
+
+std::vector<Match> ColourMatcher::Find(const Lab& target) const {
+  CheckTargetLab(target);
   // DeltaE00 is needed only at scan points where it may come within the margin of the
   // best (and at their neighbours, which decide whether they are minima): a point whose
   // lower bound exceeds reach = an upper bound of the best + the margin + the most the
@@ -355,25 +383,59 @@ std::vector<Match> MatchColour(const Colorimeter& colorimeter, const AlloyModel&
 }
 
 Lab LabFromTargetXYZ(const Colorimeter& colorimeter, const XYZ& xyz) {
-  if (!std::isfinite(xyz.X) || !std::isfinite(xyz.Y) || !std::isfinite(xyz.Z) || xyz.X < 0 ||
-      xyz.Y < 0 || xyz.Z < 0) {
-    throw Error("XYZ " + FormatNumber(xyz.X) + "," + FormatNumber(xyz.Y) + "," +
-                FormatNumber(xyz.Z) + " is not three finite numbers >= 0");
+  const std::string text =
+      "XYZ " + FormatNumber(xyz.X) + "," + FormatNumber(xyz.Y) + "," + FormatNumber(xyz.Z);
+  const char* names[] = {"X", "Y", "Z"};
+  const double values[] = {xyz.X, xyz.Y, xyz.Z};
+  for (int i = 0; i < 3; ++i) {
+    if (!std::isfinite(values[i])) throw Error(text + ": " + names[i] + " is not finite");
+    if (values[i] < 0) {
+      throw Error(text + ": " + names[i] + " = " + FormatNumber(values[i]) +
+                  " is negative (tristimulus values are >= 0)");
+    }
+    if (values[i] > kMaxTargetXYZ) {
+      throw Error(text + ": " + names[i] + " = " + FormatNumber(values[i]) + " lies above " +
+                  FormatNumber(kMaxTargetXYZ) +
+                  " (on this scale a perfect reflector has Y = 1: divide values on the 0-100 "
+                  "scale by 100)");
+    }
   }
   return LabFromXYZ(xyz, colorimeter.White());
 }
 
+std::array<int, 3> ParseHexColour(const std::string& text) {
+  const std::string quoted = Quote(text, 40);
+  const auto refuse = [&](const std::string& why) -> std::array<int, 3> {
+    throw Error(quoted + " is not an sRGB colour '#rrggbb': " + why);
+  };
+  if (text.empty()) refuse("it is empty");
+  if (text.find_first_of(" \t\r\n") != std::string::npos) {
+    refuse("it holds a space (give the six digits alone)");
+  }
+  if (text.find_first_of(",;") != std::string::npos) {
+    refuse("it holds a list (give one colour)");
+  }
+  std::string digits = text;
+  if (digits.front() == '#') digits.erase(0, 1);
+  if (digits.find('#') != std::string::npos) refuse("'#' comes once, first");
+  for (const char c : digits) {
+    if (!std::isxdigit(static_cast<unsigned char>(c))) {
+      refuse(Quote(std::string(1, c)) + " is not a hexadecimal digit (0-9, a-f)");
+    }
+  }
+  if (digits.size() != 6) {
+    refuse(std::to_string(digits.size()) + " hexadecimal digit" + (digits.size() == 1 ? "" : "s") +
+           ", not 6");
+  }
+  std::array<int, 3> rgb8{};
+  for (int i = 0; i < 3; ++i) rgb8[i] = std::stoi(digits.substr(2 * i, 2), nullptr, 16);
+  return rgb8;
+}
+
 Lab LabFromHex(const Colorimeter& colorimeter, const std::string& hex) {
-  std::string digits = hex;
-  if (!digits.empty() && digits.front() == '#') digits.erase(0, 1);
-  if (digits.size() != 6 || !std::all_of(digits.begin(), digits.end(),
-                                         [](unsigned char c) { return std::isxdigit(c); })) {
-    throw Error("colour " + Quote(hex) + " is not '#rrggbb' (six hexadecimal digits)");
-  }
+  const std::array<int, 3> rgb8 = ParseHexColour(hex);
   double channel[3];
-  for (int i = 0; i < 3; ++i) {
-    channel[i] = SRGBDecode(std::stoi(digits.substr(2 * i, 2), nullptr, 16) / 255.0);
-  }
+  for (int i = 0; i < 3; ++i) channel[i] = SRGBDecode(rgb8[i] / 255.0);
   return LabFromXYZ(XYZFromLinearSRGB({channel[0], channel[1], channel[2]}), colorimeter.White());
 }
 

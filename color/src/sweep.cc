@@ -82,7 +82,8 @@ bool ColorSweep::BuildSegment(double x_lo, double x_hi, int intervals, double to
   return true;
 }
 
-bool ColorSweep::BuildTable(double x_from, double x_to, double tolerance) {
+bool ColorSweep::BuildTable(double x_from, double x_to, double tolerance, int max_nodes) {
+  max_nodes = std::min(max_nodes, kSweepMaxTableNodes);
   segments_.clear();
   table_error_ = 0.0;
   table_nodes_ = 0;
@@ -105,8 +106,11 @@ bool ColorSweep::BuildTable(double x_from, double x_to, double tolerance) {
     int intervals = std::max(8, static_cast<int>(std::ceil(256.0 * (z - a))));
     Segment segment;
     double error = 0.0;
+    // Each attempt costs two evaluations per interval: past max_nodes the table would cost
+    // more than the evaluations it saves (a model whose colour swings wildly), so none.
+    if (nodes + intervals + 1 > max_nodes) return false;
     while (!BuildSegment(a, z, intervals, tolerance, &segment, &error)) {
-      if (!(error > tolerance) || nodes + 2 * intervals > kSweepMaxTableNodes) return false;
+      if (!(error > tolerance) || nodes + 2 * intervals + 1 > max_nodes) return false;
       intervals *= 2;
     }
     worst = std::max(worst, error);

@@ -8,7 +8,8 @@
 // `scan_points` evenly spaced compositions, the ends and each one where the colour has moved
 // kColourScanStep CIEDE2000 along its path since the last kept (or kColourScanGap of the
 // range; a spectrum's scan keeps them all). Every local minimum of the scan (ends included)
-// is refined by Brent's method (on d^2, smooth where d has a corner) on the exact model
+// (the kMaxRefinedMinima lowest, where there are more) is refined by Brent's method (on d^2,
+// smooth where d has a corner) on the exact model
 // (ColorSweep::ExactXYZ) inside its two neighbouring scan intervals, and the minima within `margin`
 // of the best are returned, best first. The scan computes CIEDE2000 only where a lower bound
 // (DeltaE00LowerBound, colorimetry.h) leaves a point within reach of the best; its result is
@@ -29,6 +30,7 @@
 #ifndef ALLOYCOLOR_COLOR_MATCH_H_
 #define ALLOYCOLOR_COLOR_MATCH_H_
 
+#include <array>
 #include <cstddef>
 #include <limits>
 #include <memory>
@@ -51,6 +53,9 @@ inline constexpr double kColourScanGap = 0.01;
 // The step of the colour-speed difference and of the tolerance walk, in atomic fraction.
 inline constexpr double kColourSpeedStep = 1e-5;
 inline constexpr double kToleranceStep = 5e-4;
+// The most local minima of the scan refined (the lowest): a bound on the work for a model
+// whose colour swings back and forth, far more than any fitted model has.
+inline constexpr std::size_t kMaxRefinedMinima = 32;
 
 struct MatchOptions {
   double angle_deg = 0.0;
@@ -86,7 +91,7 @@ class ColourMatcher {
   ~ColourMatcher();
 
   // The minima of DeltaE00(target, Lab(x)) within options.margin of the best, best
-  // first (never empty). Throws Error for a target that is not finite.
+  // first (never empty). Throws Error for a target CheckTargetLab refuses.
   std::vector<Match> Find(const Lab& target) const;
   // The same for a measured reflectance spectrum at the matcher's angle, by
   // reflectance RMS over the spectrum's wavelengths inside the model's range.
@@ -122,12 +127,27 @@ class ColourMatcher {
 std::vector<Match> MatchColour(const Colorimeter& colorimeter, const AlloyModel& model,
                                const Lab& target, const MatchOptions& options = {});
 
+// What a target colour may be: L* in 0-kMaxTargetL, a* and b* within +-kMaxTargetAB (what
+// any XYZ target within 0-kMaxTargetXYZ gives), X, Y, Z in 0-kMaxTargetXYZ (a perfect
+// reflector has Y = 1; more is a measurement brighter than the white, up to twice).
+inline constexpr double kMaxTargetL = 150.0;
+inline constexpr double kMaxTargetAB = 600.0;
+inline constexpr double kMaxTargetXYZ = 2.0;
+
+// Throws Error ("the target L*a*b* ...: L* = ... lies outside 0-150") when a target lies
+// outside those bounds or is not finite: the target is at fault, not the model.
+void CheckTargetLab(const Lab& target);
+
 // Targets given other ways, as CIELAB relative to the colorimeter's white:
-// XYZ on the toolkit's scale (a perfect reflector has Y = 1);
+// XYZ on the toolkit's scale (a perfect reflector has Y = 1); throws Error naming the
+// value at fault when one is negative, not finite or above kMaxTargetXYZ;
 Lab LabFromTargetXYZ(const Colorimeter& colorimeter, const XYZ& xyz);
-// "#rrggbb" (or "rrggbb") as 8-bit sRGB, decoded and taken to XYZ with the IEC 61966-2-1
-// matrix without chromatic adaptation, the inverse of how the toolkit writes sRGB.
-// Throws Error naming the text when it is not six hex digits.
+// "#rrggbb" (or "rrggbb") as 8-bit sRGB values 0-255. Throws Error quoting the text and
+// saying what is wrong: a character that is not a hex digit, a count other than six, a
+// space, '#' twice, a list of colours.
+std::array<int, 3> ParseHexColour(const std::string& text);
+// That colour decoded and taken to XYZ with the IEC 61966-2-1 matrix without chromatic
+// adaptation, the inverse of how the toolkit writes sRGB.
 Lab LabFromHex(const Colorimeter& colorimeter, const std::string& hex);
 
 struct ToleranceOptions {

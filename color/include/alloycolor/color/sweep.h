@@ -15,8 +15,10 @@
 // eps-linear models have kinks) and read by 4-point Lagrange (cubic) interpolation. The
 // table is refined until the largest error, measured against the exact XYZ at the midpoint
 // of every table interval, is at most the tolerance (default 1e-7 in X, Y and Z, each of
-// which lies in [0, ~1.1]); if that needs more than kSweepMaxTableNodes nodes, no table is
-// built and every composition is evaluated exactly.
+// which lies in [0, ~1.1]); if that needs more than the caller's budget of nodes (the
+// number of compositions it will read, at most kSweepMaxTableNodes), no table is built and
+// every composition is evaluated exactly: building never costs more than a few times the
+// exact evaluations it would save, whatever the model.
 #ifndef ALLOYCOLOR_COLOR_SWEEP_H_
 #define ALLOYCOLOR_COLOR_SWEEP_H_
 
@@ -44,9 +46,11 @@ class ColorSweep {
   XYZ ExactXYZ(double x_atomic) const;
 
   // Tabulates XYZ over [x_from, x_to] (either order). Returns false, and keeps no table,
-  // when the tolerance cannot be met within kSweepMaxTableNodes nodes, when the range is
-  // empty, or when the model gives a non-finite colour somewhere.
-  bool BuildTable(double x_from, double x_to, double tolerance = kSweepTableTolerance);
+  // when the tolerance cannot be met within max_nodes nodes (at most kSweepMaxTableNodes;
+  // the evaluations spent trying stay under 2 max_nodes + 256), when the range is empty,
+  // or when the model gives a non-finite colour somewhere.
+  bool BuildTable(double x_from, double x_to, double tolerance = kSweepTableTolerance,
+                  int max_nodes = kSweepMaxTableNodes);
   bool has_table() const { return !segments_.empty(); }
   // The largest |dX|, |dY|, |dZ| measured at the interval midpoints while building.
   double table_error() const { return table_error_; }

@@ -1,9 +1,11 @@
 // alloycolor tolerance: how precisely a composition must be held for its colour to stay
 // within a CIEDE2000 of its own under every illuminant and angle given (color/match.h).
+#include <cctype>
 #include <cstdio>
 #include <iostream>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "alloycolor/color/match.h"
@@ -39,7 +41,17 @@ std::vector<std::string> Names(const std::string& text) {
 }
 
 void Run(const ToleranceCommandOptions& o) {
-  if (o.x_text.find(',') != std::string::npos) throw Error("--x: give one composition");
+  if (const size_t comma = o.x_text.find(','); comma != std::string::npos) {
+    const std::string_view whole = Trim(std::string_view(o.x_text).substr(0, comma));
+    const std::string_view fraction = Trim(std::string_view(o.x_text).substr(comma + 1));
+    if (!whole.empty() && whole.find_first_not_of("0123456789") == std::string_view::npos &&
+        !fraction.empty() && std::isdigit(static_cast<unsigned char>(fraction.front())) &&
+        fraction.find(',') == std::string_view::npos) {
+      throw Error("--x: " + Quote(o.x_text) + " has a decimal comma: write " + std::string(whole) +
+                  "." + std::string(fraction) + " (the decimal mark is a point)");
+    }
+    throw Error("--x: give one composition, not the list " + Quote(o.x_text));
+  }
   const std::vector<double> angles = ParseNumberList(o.angles, "--angles");
   for (const double a : angles) {
     if (!(a >= 0.0 && a <= 90.0)) {

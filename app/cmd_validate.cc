@@ -86,11 +86,7 @@ std::vector<std::string> ParseMethods(const std::string& text) {
 void PrepareOutput(const std::string& dir) {
   namespace fs = std::filesystem;
   std::error_code ec;
-  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec)) {
-    throw Error("--out " + dir + " exists and is not a folder");
-  }
-  fs::create_directories(dir, ec);
-  if (ec) throw Error("--out: cannot create folder '" + dir + "': " + ec.message());
+  CreateOutputFolder(dir, "--out");  // removed again when the run stops before writing
   const std::string probe = (fs::path(dir) / ".alloycolor-write-check").string();
   WriteFileAtomic(probe, "", &ProgramGuard());
   fs::remove(probe, ec);

@@ -173,11 +173,15 @@ std::vector<double> ParseCompositions(const std::string& text, const AlloySystem
   std::vector<double> xs;
   const std::vector<std::string> parts = SplitComma(text);
   CheckCompositionCount(parts.size(), option);
-  for (const std::string& part : parts) {
-    if (part.find('\0') != std::string::npos) throw Error(option + ": a NUL byte in the list");
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    if (parts[i].find('\0') != std::string::npos) throw Error(option + ": a NUL byte in the list");
     try {
-      xs.push_back(ParseComposition(part, system));
+      xs.push_back(ParseComposition(parts[i], system));
     } catch (const Error& e) {
+      if (const std::string meant = DecimalCommaReading(parts, i, system); !meant.empty()) {
+        throw Error(option + ": " + Quote(text) + " has a decimal comma: write " + meant +
+                    " (a comma separates compositions; the decimal mark is a point)");
+      }
       throw Error(option + ": " + e.what());
     }
   }
@@ -190,6 +194,11 @@ double ParseCompositionArg(const std::string& text, const AlloySystem& system,
   try {
     return ParseComposition(text, system);
   } catch (const Error& e) {
+    if (const std::string meant = DecimalCommaReading(SplitComma(text), 0, system);
+        !meant.empty() && SplitComma(text).size() == 2) {
+      throw Error(option + ": " + Quote(text) + " has a decimal comma: write " + meant +
+                  " (the decimal mark is a point)");
+    }
     throw Error(option + ": " + e.what());
   }
 }
@@ -397,11 +406,20 @@ CLI::Validator NumberIn(const NumberRange& range) {
 }
 
 void CheckOutputFolder(const std::string& path, const std::string& option) {
-  const fs::path folder = fs::path(path).parent_path();
-  std::error_code ec;
-  if (!folder.empty() && !fs::is_directory(folder, ec)) {
-    throw Error(option + ": folder '" + folder.string() + "' does not exist");
+  if (const std::string problem = OutputFolderProblem(path); !problem.empty()) {
+    throw Error(option + ": " + problem);
   }
+}
+
+std::string OutputFolderProblem(const std::string& path) {
+  std::string file = path;  // "dir/new/" names the folder new in dir: dir must exist
+  while (file.size() > 1 && file.back() == '/') file.pop_back();
+  const fs::path folder = fs::path(file).parent_path();
+  std::error_code ec;
+  if (folder.empty() || fs::is_directory(folder, ec)) return "";
+  return "folder " + Quote(folder.string(), 200) +
+         (fs::exists(folder, ec) ? " is not a folder" : " does not exist") +
+         " (outputs go into an existing folder)";
 }
 
 void CheckComposition(const AlloyModel& model, double x_atomic, bool extrapolate) {

@@ -123,6 +123,9 @@ CLI::Validator NumberIn(const NumberRange& range);
 
 // Refuses an output path whose folder does not exist, before any work is done.
 void CheckOutputFolder(const std::string& path, const std::string& option);
+// Why an output cannot go to `path`'s folder ("folder 'x' does not exist"), or "": what
+// main checks of every command's --out while it reads the command line.
+std::string OutputFolderProblem(const std::string& path);
 
 // Checks x against the model's range unless extrapolation is allowed.
 void CheckComposition(const AlloyModel& model, double x_atomic, bool extrapolate);

@@ -81,6 +81,21 @@ std::string GuidingLine(const CLI::App& app, int argc, char** argv) {
   return "";
 }
 
+// Every command's --out is checked for an existing folder while the command line is read,
+// before any work (a fit, a report); validate's --out is the report folder itself, made
+// when missing.
+void CheckOutputFoldersFirst(CLI::App& app) {
+  for (CLI::App* cmd : app.get_subcommands([](const CLI::App*) { return true; })) {
+    if (cmd->get_name() == "validate") continue;
+    for (CLI::Option* option : cmd->get_options()) {
+      if (!option->check_lname("out")) continue;
+      option->check(CLI::Validator(
+          [](std::string& path) { return alloycolor::app::OutputFolderProblem(path); },
+          "FILE in an existing folder"));
+    }
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -114,6 +129,7 @@ int main(int argc, char** argv) {
   alloycolor::app::RegisterExplore(app);
   alloycolor::app::RegisterMatch(app);
   alloycolor::app::RegisterTolerance(app);
+  CheckOutputFoldersFirst(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

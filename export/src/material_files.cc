@@ -112,30 +112,59 @@ std::string MitsubaRgbConductorXml(const RendererMaterials& m, const std::string
   return out;
 }
 
+// The script picks the best node the running Blender has, by feature, not by a version
+// number: the Metallic BSDF with the physical-conductor Fresnel (Blender 4.2 on); else the
+// Principled BSDF with Metallic 1, Base Color = F0 and, from Blender 4.0 (whose metallic
+// Fresnel is F82-tint), Specular Tint = the F82 tint; else (Blender 2.80 to 3.6) the
+// Principled BSDF with Base Color = F0, Schlick's Fresnel. Older than 2.80 it stops with
+// one line naming the version it needs. Each branch's largest CIEDE2000 is in its comment.
 std::string BlenderMetallicScript(const RendererMaterials& m, const std::string& material,
                                   const std::string& name, const std::vector<std::string>& header) {
   std::string out;
   const auto comment = [&out](const std::string& line) { out += "# " + OneLine(line) + "\n"; };
-  comment("Blender 4.x: a material with a Metallic BSDF for " + material);
+  comment("Blender 2.80 or later: a material for " + material +
+          " with the best conductor node the running Blender has");
   comment(std::string("values in ") + kColorSpaceNote);
-  comment(FitLine(m));
+  comment("Blender 4.2 on: Metallic BSDF, physical conductor; " + FitLine(m));
   comment(
-      "F82 mode (commented out below): Base Color = F0, Edge Tint = F82 tint; largest "
-      "CIEDE2000 " +
+      "Blender 4.0-4.1: Principled BSDF, Metallic 1, Base Color = F0, Specular Tint = F82 tint "
+      "(F82-tint Fresnel), largest CIEDE2000 " +
       DeltaText(m.f82.error));
+  comment(
+      "Blender 2.80-3.6: Principled BSDF, Metallic 1, Base Color = F0 (Schlick's Fresnel), "
+      "largest CIEDE2000 " +
+      DeltaText(m.f82.schlick_error));
   for (const std::string& line : header) comment(line);
+  const std::string f0 = "(" + Triple(m.f82.f0, ", ") + ", 1.0)";
   out += "import bpy\n\n";
+  out += "if bpy.app.version < (2, 80, 0):\n";
+  out +=
+      "    raise RuntimeError(\"this material script needs Blender 2.80 or later (Principled "
+      "BSDF); this is Blender %d.%d\" % bpy.app.version[:2])\n\n";
   out += "material = bpy.data.materials.new(" + PythonString(name) + ")\n";
   out += "material.use_nodes = True\n";
   out += "nodes = material.node_tree.nodes\n";
-  out += "metal = nodes.new(\"ShaderNodeBsdfMetallic\")\n";
-  out += "metal.fresnel_type = \"PHYSICAL_CONDUCTOR\"\n";
-  out += "metal.inputs[\"IOR\"].default_value = (" + Triple(m.rgb_conductor.eta, ", ") + ")\n";
-  out += "metal.inputs[\"Extinction\"].default_value = (" + Triple(m.rgb_conductor.k, ", ") + ")\n";
-  out += "metal.inputs[\"Roughness\"].default_value = 0.0\n";
-  out += "# metal.fresnel_type = \"F82\"\n";
-  out += "# metal.inputs[\"Base Color\"].default_value = (" + Triple(m.f82.f0, ", ") + ", 1.0)\n";
-  out += "# metal.inputs[\"Edge Tint\"].default_value = (" + Triple(m.f82.tint, ", ") + ", 1.0)\n";
+  out += "for node in [n for n in nodes if n.type != \"OUTPUT_MATERIAL\"]:\n";
+  out += "    nodes.remove(node)\n";
+  out += "if hasattr(bpy.types, \"ShaderNodeBsdfMetallic\"):\n";
+  out += "    metal = nodes.new(\"ShaderNodeBsdfMetallic\")\n";
+  out += "    metal.fresnel_type = \"PHYSICAL_CONDUCTOR\"\n";
+  out += "    metal.inputs[\"IOR\"].default_value = (" + Triple(m.rgb_conductor.eta, ", ") + ")\n";
+  out += "    metal.inputs[\"Extinction\"].default_value = (" + Triple(m.rgb_conductor.k, ", ") +
+         ")\n";
+  out += "    metal.inputs[\"Roughness\"].default_value = 0.0\n";
+  out += "    # metal.fresnel_type = \"F82\"\n";
+  out += "    # metal.inputs[\"Base Color\"].default_value = " + f0 + "\n";
+  out +=
+      "    # metal.inputs[\"Edge Tint\"].default_value = (" + Triple(m.f82.tint, ", ") + ", 1.0)\n";
+  out += "else:\n";
+  out += "    metal = nodes.new(\"ShaderNodeBsdfPrincipled\")\n";
+  out += "    metal.inputs[\"Base Color\"].default_value = " + f0 + "\n";
+  out += "    metal.inputs[\"Metallic\"].default_value = 1.0\n";
+  out += "    metal.inputs[\"Roughness\"].default_value = 0.0\n";
+  out += "    if bpy.app.version >= (4, 0, 0):\n";
+  out += "        metal.inputs[\"Specular Tint\"].default_value = (" + Triple(m.f82.tint, ", ") +
+         ", 1.0)\n";
   out += "output = nodes.get(\"Material Output\") or nodes.new(\"ShaderNodeOutputMaterial\")\n";
   out += "material.node_tree.links.new(metal.outputs[\"BSDF\"], output.inputs[\"Surface\"])\n";
   return out;

@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets of fuzz/ with clang into build-fuzz/ and runs each for a
-# bounded time, seeded from data/, tests/ and fuzz/seeds/.
-#   scripts/fuzz.sh [SECONDS_PER_TARGET] [TARGET...]     (default 60 s; yaml csv manifest model)
+# bounded time, seeded from data/, tests/ and fuzz/seeds/; "page" is the explorer page's
+# parsers under Node (fuzz/page_parser_fuzz.js: exceptions, ranges, linear work).
+#   scripts/fuzz.sh [SECONDS_PER_TARGET] [TARGET...]
+#   (default 60 s; yaml csv manifest model page)
 # The growing corpus stays in build-fuzz/corpus/; inputs that crash go to
 # build-fuzz/artifacts/ (copy them to tests/fuzz-regressions/TARGET/ once fixed; the
 # fuzz_regressions test replays them). Exits 1 when any target found something.
@@ -10,11 +12,13 @@ cd "$(dirname "$0")/.."
 seconds=${1:-60}
 shift || true
 targets=("$@")
-((${#targets[@]})) || targets=(yaml csv manifest model)
+((${#targets[@]})) || targets=(yaml csv manifest model page)
+native=()
+for t in "${targets[@]}"; do [[ $t == page ]] || native+=("$t"); done
 
 # clang and its sanitizer/fuzzer runtime, from Debian, only what is missing.
 missing=()
-for p in clang libclang-rt-14-dev cmake ninja-build; do
+for p in clang libclang-rt-14-dev cmake ninja-build nodejs; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
 if ((${#missing[@]})); then
@@ -23,7 +27,7 @@ fi
 
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DALLOYCOLOR_BUILD_FUZZERS=ON -DALLOYCOLOR_BUILD_TESTS=OFF -DALLOYCOLOR_BUILD_BENCH=OFF >/dev/null
-cmake --build build-fuzz -j"${JOBS:-2}" --target "${targets[@]/%/_fuzzer}"
+((${#native[@]} == 0)) || cmake --build build-fuzz -j"${JOBS:-2}" --target "${native[@]/%/_fuzzer}"
 
 # Seeds for each target: folders (read-only corpora) and files copied into a seed folder.
 seed_dir() {
@@ -50,6 +54,17 @@ mkdir -p build-fuzz/artifacts
 summary=()
 found=0
 for target in "${targets[@]}"; do
+  if [[ $target == page ]]; then
+    log=build-fuzz/page.log
+    echo "== fuzzing page for ${seconds}s (log $log)"
+    set +e
+    node fuzz/page_parser_fuzz.js "$seconds" build-fuzz/artifacts >"$log" 2>&1
+    status=$?
+    set -e
+    ((status == 0)) || { found=1; grep -m3 'FUZZ FINDING' "$log" || tail -3 "$log"; }
+    summary+=("$(printf '%-9s %s' page "$(tail -1 "$log")")")
+    continue
+  fi
   corpus=build-fuzz/corpus/$target
   mkdir -p "$corpus"
   seeds=$(seed_dir "$target")

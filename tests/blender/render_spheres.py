@@ -9,6 +9,7 @@
 #                 "pixels": [[column, row], ...]}]}
 # Rows count from the bottom (Blender's pixel order).
 import json
+import os
 import sys
 import time
 import types
@@ -52,54 +53,11 @@ def panel_draws(material):
     panel.draw(types.SimpleNamespace(layout=layout), context)
     return layout.drawn
 
-scene = bpy.context.scene
-for obj in list(scene.objects):
-    bpy.data.objects.remove(obj, do_unlink=True)
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from sphere_scene import sphere_scene  # noqa: E402  (beside this file)
 
-bpy.ops.mesh.primitive_uv_sphere_add(segments=256, ring_count=128, radius=1.0)
-sphere = bpy.context.active_object
-bpy.ops.object.shade_smooth()
-sphere.rotation_euler = (1.5707963267948966, 0.0, 0.0)  # the poles off the view axis
-
-camera_data = bpy.data.cameras.new("camera")
-camera_data.type = "ORTHO"
-camera_data.ortho_scale = jobs["ortho_scale"]
-camera = bpy.data.objects.new("camera", camera_data)
-camera.location = (0.0, 0.0, 10.0)  # a camera looks down its -z axis: at the sphere
-scene.collection.objects.link(camera)
-scene.camera = camera
-
-world = bpy.data.worlds.new("white")
-world.use_nodes = True
-background = world.node_tree.nodes["Background"]
-background.inputs["Color"].default_value = (1.0, 1.0, 1.0, 1.0)
-background.inputs["Strength"].default_value = 1.0
-scene.world = world
-
+scene, sphere = sphere_scene(jobs["size"], jobs["ortho_scale"], jobs["samples"])
 render = scene.render
-render.engine = "CYCLES"
-scene.cycles.device = "CPU"
-scene.cycles.samples = jobs["samples"]
-scene.cycles.use_adaptive_sampling = False
-scene.cycles.use_denoising = False
-scene.cycles.blur_glossy = 0.0
-scene.cycles.pixel_filter_type = "BOX"
-scene.cycles.filter_width = 0.01  # every sample at the pixel's centre
-render.threads_mode = "FIXED"
-render.threads = 2
-render.resolution_x = render.resolution_y = jobs["size"]
-render.resolution_percentage = 100
-render.film_transparent = False
-render.dither_intensity = 0.0
-render.image_settings.file_format = "PNG"
-render.image_settings.color_mode = "RGB"
-render.image_settings.color_depth = "8"
-scene.display_settings.display_device = "sRGB"
-scene.view_settings.view_transform = "Standard"
-scene.view_settings.look = "None"
-scene.view_settings.exposure = 0.0
-scene.view_settings.gamma = 1.0
-scene.sequencer_colorspace_settings.name = "sRGB"
 
 results = []
 materials = {}

@@ -24,15 +24,10 @@ struct FitOptions {
   std::string data_dir;
   std::string exclude_text;
   std::string method = "auto";
-  std::string terms = "auto";
   std::string out;
-  std::string refit;     // --refit MODEL
-  std::string from_old;  // --from MODEL, --refit's old spelling (accepted with a note)
-  int degree = -1;
-  double smoothing = -1;
-  std::string space;
-  double lambda_from = 0, lambda_to = 0, lambda_step = 0;
-  bool no_covariance = false;
+  std::string refit;            // --refit MODEL
+  std::string from_old;         // --from MODEL, --refit's old spelling (accepted with a note)
+  OptionValues method_options;  // --degree, --smoothing, ...: the registry's declarations
   bool quiet = false;
   bool verbose = false;
   int threads = 0;
@@ -171,27 +166,12 @@ void Run(const FitOptions& o) {
   }
   // Before the fit: the model must not replace an input (the manifest, a sample, --refit).
   CheckOutputPath(o.out);
-  if (o.lambda_step > 0) {
-    const WavelengthRange common = CommonRange(dataset);
-    const double lo = o.lambda_from > 0 ? o.lambda_from : common.lo_nm;
-    const double hi = o.lambda_to > 0 ? o.lambda_to : common.hi_nm;
-    if ((hi - lo) / o.lambda_step > kMaxFitGridNodes) {
-      throw Error("--lambda-step " + FormatNumber(o.lambda_step) + " nm over " + FormatNumber(lo) +
-                  "-" + FormatNumber(hi) + " nm makes over " + std::to_string(kMaxFitGridNodes) +
-                  " grid nodes; give a larger step");
-    }
-  }
+  // The method's options against its declarations, named by their flags, before the fit.
+  fit::CheckFitOptions(o.method, o.method_options, dataset, OptionSpelling::kFlag);
   const auto start = std::chrono::steady_clock::now();
   fit::FitSettings settings;
   settings.threads = &threads;
-  settings.degree = o.degree;
-  settings.smoothing = o.smoothing;
-  settings.space = o.space;
-  settings.terms = o.terms;
-  settings.covariance = !o.no_covariance;
-  settings.lambda_from_nm = o.lambda_from;
-  settings.lambda_to_nm = o.lambda_to;
-  settings.lambda_step_nm = o.lambda_step;
+  settings.options = o.method_options;
   settings.start = old_model.get();
   settings.progress = ProgressPrinter(o.quiet);
   settings.details = ProgressPrinter(!o.verbose);
@@ -242,42 +222,7 @@ void RegisterFit(CLI::App& app) {
                   "Start from this earlier model and report what changed (even with --quiet)");
   cmd->add_option("--from", o->from_old, "--refit's old name (accepted until version 0.3)")
       ->group("");
-  cmd->add_option("--degree", o->degree,
-                  "physical: degree of every parameter's polynomial in composition (default: 2, "
-                  "as Nordheim's rule bows the damping, or 1 where leave-one-composition-out "
-                  "finds it more than 10 % and one standard error better; lowered, with a "
-                  "warning, where the fit leaves physics)")
-      ->check(NumberIn(kDegreeRange));
-  cmd->add_option("--terms", o->terms,
-                  "physical: interband terms, comma-separated: lorentz, cp (Etchegoin 2006 "
-                  "critical point), rioux-gap, rioux-edge (Rioux 2014); none for the Drude "
-                  "term alone; auto: none for infrared data, else the best of "
-                  "rioux-gap,rioux-edge / cp,cp / lorentz,lorentz,lorentz on the end samples")
-      ->capture_default_str();
-  cmd->add_option("--smoothing", o->smoothing,
-                  "smooth: weight of the roughness penalty across composition, 0 (interpolate) "
-                  "to 1e6 (default: chosen by leave-one-composition-out cross-validation, or with "
-                  "fewer than five compositions by the marginal likelihood)")
-      ->check(NumberIn(kSmoothingRange));
-  cmd->add_option("--space", o->space,
-                  "smooth: what its curves across composition describe: eps (eps1, eps2) or "
-                  "log_eps (ln|eps| and arg eps: geometric interpolation, for samples whose "
-                  "|eps| differ by orders of magnitude or one of which is not metallic) "
-                  "(default: log_eps where its leave-one-out error is at least a third below "
-                  "eps's, else eps)")
-      ->check(CLI::IsMember({"eps", "log_eps"}));
-  cmd->add_option("--lambda-from", o->lambda_from,
-                  "smooth, physical: first wavelength of the fit grid, nm (physical default: "
-                  "the common range within 300-1000 nm, or all of it for infrared data)")
-      ->check(NumberIn(kLambdaNmRange));
-  cmd->add_option("--lambda-to", o->lambda_to,
-                  "smooth, physical: last wavelength of the fit grid, nm")
-      ->check(NumberIn(kLambdaNmRange));
-  cmd->add_option("--lambda-step", o->lambda_step,
-                  "smooth, physical: grid step, nm (default 5; physical: range/200 in the "
-                  "infrared); at least 0.01 nm, at most 20,000 grid nodes")
-      ->check(NumberIn(kLambdaStepNmRange));
-  cmd->add_flag("--no-covariance", o->no_covariance, "smooth, physical: skip the covariance");
+  AddMethodOptions(cmd, &o->method_options);
   cmd->add_option("--threads", o->threads,
                   "Threads for the leave-one-out folds of the fit (0: all the hardware's)")
       ->capture_default_str()

@@ -48,12 +48,6 @@ std::vector<std::string> SplitList(const std::string& text) {
   return parts;
 }
 
-std::string Format(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", x);
-  return buf;
-}
-
 std::vector<validate::SampleSplit> Splits(const ValidateOptions& o, const Dataset& dataset) {
   if (o.loo && !o.holdout_text.empty()) throw Error("give --holdout or --loo, not both");
   if (o.holdout_text.empty()) return validate::LeaveOneOutSplits(dataset);
@@ -62,24 +56,6 @@ std::vector<validate::SampleSplit> Splits(const ValidateOptions& o, const Datase
   } catch (const Error& e) {
     throw Error(std::string("--holdout: ") + e.what());
   }
-}
-
-std::vector<std::string> ParseMethods(const std::string& text) {
-  std::vector<std::string> methods;
-  std::vector<std::string> names = SplitList(text);
-  if (text.empty()) names = DefaultValidationMethods();
-  if (text == "all") {
-    names.clear();
-    for (const MethodInfo& m : Methods()) names.push_back(m.name);
-    names.push_back(fit::kAutoMethod);
-  }
-  for (const std::string& m : names) {
-    if (m.empty()) throw Error("--methods: empty method name in '" + text + "'");
-    if (m != fit::kAutoMethod) RequireMethod(m);
-    if (std::find(methods.begin(), methods.end(), m) == methods.end()) methods.push_back(m);
-  }
-  if (methods.empty()) throw Error("--methods: no method given");
-  return methods;
 }
 
 // Creates the report folder and checks that files can be written there, before the work.
@@ -211,11 +187,9 @@ void Run(const ValidateOptions& o) {
   const color::Colorimeter d65 = LoadColorimeter("D65", 2);
   options.build = fit::SharedFitBuilder(d65, &threads);
   options.threads = &threads;
-  options.methods = ParseMethods(o.methods);
+  options.methods = MethodList(o.methods, "--methods");
   options.angles_deg = ParseNumberList(o.angles, "--angles");
-  for (double a : options.angles_deg) {
-    if (!(a >= 0 && a < 90)) throw Error("--angles: " + Format(a) + " lies outside 0-90 degrees");
-  }
+  for (double a : options.angles_deg) CheckAngleDeg("--angles", a);
   options.mode = o.holdout_text.empty() ? "loo" : "holdout";
   const std::vector<validate::SampleSplit> splits = Splits(o, dataset);
   const color::Colorimeter colorimeter = LoadColorimeter(o.illuminant, o.observer);

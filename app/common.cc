@@ -405,6 +405,42 @@ CLI::Validator NumberIn(const NumberRange& range) {
           FormatNumber(range.hi) + "]");
 }
 
+void AddMethodOptions(CLI::App* cmd, OptionValues* values) {
+  for (const DeclaredOption& declared : DeclaredOptions()) {
+    const OptionSpec& spec = declared.spec;
+    std::string methods;
+    for (const std::string& m : declared.methods) methods += (methods.empty() ? "" : ", ") + m;
+    std::string help = methods + ": " + spec.help;
+    if (spec.kind == OptionKind::kFlag) {
+      // The flag sets the value other than the default (--no-covariance: false).
+      const bool set_to = !(spec.default_value && spec.default_value->flag);
+      cmd->add_flag_callback(
+          spec.flag, [values, name = spec.name, set_to] { values->Set(name, set_to); }, help);
+      continue;
+    }
+    if (spec.default_value) help += " (default: " + OptionValueText(*spec.default_value) + ")";
+    const bool number = spec.kind == OptionKind::kWhole || spec.kind == OptionKind::kNumber;
+    std::string type = spec.kind == OptionKind::kWhole ? "INT" : number ? "NUMBER" : "TEXT";
+    if (spec.kind == OptionKind::kChoice) {
+      type.clear();
+      for (const std::string& c : spec.choices) type += (type.empty() ? "{" : ",") + c;
+      type += "}";
+    }
+    cmd->add_option_function<std::string>(
+           spec.flag,
+           [values, spec](const std::string& text) {
+             values->Set(spec.name, OptionFromText(spec, text, OptionSpelling::kFlag));
+           },
+           help)
+        ->type_name(number ? type + " in [" + FormatNumber(spec.range.lo) + ", " +
+                                 FormatNumber(spec.range.hi) + "]"
+                           : type)
+        ->check(CLI::Validator(
+            [spec](std::string& text) -> std::string { return OptionTextProblem(spec, text); },
+            ""));
+  }
+}
+
 void CheckOutputFolder(const std::string& path, const std::string& option) {
   if (const std::string problem = OutputFolderProblem(path); !problem.empty()) {
     throw Error(option + ": " + problem);

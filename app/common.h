@@ -121,6 +121,13 @@ CLI::Validator NumberIn(double lo, double hi, bool whole = false);
 // The same for a library's named range (core/setting.h), with its words.
 CLI::Validator NumberIn(const NumberRange& range);
 
+// The methods' options as the program's options, generated from their declarations in
+// the registry (model/registry.h DeclaredOptions): one per option, spelt by its flag, its
+// help line naming the methods that take it, its values and default; a value the
+// declaration refuses is refused while the command line is read. The values given go into
+// `values` (kept by the caller) by the options' names.
+void AddMethodOptions(CLI::App* cmd, OptionValues* values);
+
 // Refuses an output path whose folder does not exist, before any work is done.
 void CheckOutputFolder(const std::string& path, const std::string& option);
 // Why an output cannot go to `path`'s folder ("folder 'x' does not exist"), or "": what

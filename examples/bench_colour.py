@@ -51,7 +51,7 @@ def main():
     parser.add_argument("--count", type=int, default=100000)
     parser.add_argument("--method", default="smooth")
     args = parser.parse_args()
-    model = ac.fit(ac.Dataset("Au-Ag"), args.method, covariance=False)
+    model = ac.fit(ac.Dataset("Au-Ag"), args.method)
     xs = np.random.default_rng(1).uniform(0.0, 1.0, args.count)
     lam_cmf, cmf = read_cie("cmf-1931-2.csv")
     lam_p, p = read_cie("illuminant-D65.csv")

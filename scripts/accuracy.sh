@@ -6,6 +6,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 threads=0
 if [[ ${1:-} == --threads ]]; then threads=$2; fi
-[[ -x build/app/alloycolor ]] || scripts/setup.sh
-exec python3 scripts/accuracy_table.py --program build/app/alloycolor --threads "$threads" \
-  --out docs/accuracy.md
+[[ -x build/app/alloycolor && -d build/python/alloycolor ]] || scripts/setup.sh
+# Debian's interpreter, which the Python package is built for: the methods come from its
+# registry (alloycolor.methods()).
+PYTHONPATH=build/python exec /usr/bin/python3 scripts/accuracy_table.py \
+  --program build/app/alloycolor --threads "$threads" --out docs/accuracy.md

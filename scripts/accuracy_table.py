@@ -6,8 +6,15 @@ errors fell inside one and two of the model's own sigma (leave-one-out and every
 four-composition subset of the bundled sets, the ends kept)."""
 import argparse, datetime, itertools, json, os, platform, statistics, subprocess, sys, tempfile
 
+try:
+    import alloycolor as ac
+except ImportError as e:
+    sys.exit(f"accuracy: the alloycolor Python package ({e}): build it (scripts/setup.sh) and "
+             "put build/python on PYTHONPATH, as scripts/accuracy.sh does")
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-METHODS = ["paper", "eps-linear", "eps-pchip", "eps-spline", "smooth", "physical", "auto"]
+# Every method of the registry, in its order, then auto.
+METHODS = [m["name"] for m in ac.methods()] + ["auto"]
 AUAG = "data/Au-Ag"
 # (label, data set, compositions held out; None: leave-one-out)
 SPLITS = [
@@ -21,7 +28,7 @@ SPLITS = [
 ]
 COVERAGE_SETS = [("Au-Ag", AUAG), ("Cu-Zn (Querry)", "data/Cu-Zn"),
                  ("Cu-Zn (Werner's Zn)", "data/Cu-Zn/dataset-werner-zn.json")]
-COVERAGE_METHODS = ["paper", "eps-linear", "eps-pchip", "eps-spline", "smooth", "physical", "auto"]
+COVERAGE_METHODS = METHODS
 
 
 def manifest(path):

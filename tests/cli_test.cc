@@ -257,7 +257,7 @@ TEST_F(BadInput, FitExcludesBySampleAsTheManifestNamesIt) {
 TEST_F(BadInput, ModelFilesAndRefit) {
   const std::string model = dir_ + "/model.json";
   RunResult r = RunProgram({"fit", "--data", "Au-Ag", "--method", "smooth", "--exclude", "0.3,0.7",
-                            "--degree", "3", "--out", model, "--quiet"});
+                            "--out", model, "--quiet"});
   ASSERT_EQ(r.status, 0) << r.err;
   std::ifstream in(model);
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

@@ -417,8 +417,7 @@ TEST(Messages, OptionValuesAreShownOnOneSafeLine) {
 TEST(Messages, AModelWithAStringFinalCostNamesTheField) {
   const std::string dir = MakeTempDir();
   const std::string model = dir + "/m.json";
-  ASSERT_EQ(RunProgram({"fit", "--data", "Au-Ag", "--method", "smooth", "--degree", "2",
-                        "--no-covariance", "--out", model, "--quiet"})
+  ASSERT_EQ(RunProgram({"fit", "--data", "Au-Ag", "--method", "smooth", "--out", model, "--quiet"})
                 .status,
             0);
   std::string text = ReadBytes(model);

@@ -99,7 +99,7 @@ TEST(EveryMethod, ThePhysicalDegreeChoiceWithoutAColorimeterIsAClearError) {
     EXPECT_NE(std::string(e.what()).find("colorimeter"), std::string::npos) << e.what();
   }
   fit::FitSettings fixed;
-  fixed.degree = 1;
+  fixed.options.Set("degree", 1);
   fixed.calibrate = false;
   EXPECT_NO_THROW(fit::BuildModel("physical", data, fixed));
 }

@@ -258,7 +258,7 @@ TEST(PhysicalFit, TheDataChooseTheCompositionDegree) {
     const Dataset data = LoadDataset(
         WriteSyntheticDataset(Truth(bowing), {0.0, 0.2, 0.4, 0.6, 0.8, 1.0}, bowing ? 1e-4 : 1e-2));
     fit::FitSettings settings;
-    settings.terms = "cp,cp";
+    settings.options.Set("terms", "cp,cp");
     settings.colorimeter = &colorimeter;
     settings.memo = fit::MakeFitMemo();
     const auto model = fit::BuildModel("physical", data, settings);

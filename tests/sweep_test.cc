@@ -267,8 +267,8 @@ TEST(SweepCommand, TableAgreesWithExactAndSaysSo) {
 
 TEST(SweepCommand, JsonAndOptions) {
   const std::string dir = MakeTempDir();
-  ASSERT_EQ(RunProgram({"fit", "--data", "Au-Ag", "--method", "smooth", "--degree", "2",
-                        "--no-covariance", "--out", dir + "/smooth.json", "--quiet"})
+  ASSERT_EQ(RunProgram({"fit", "--data", "Au-Ag", "--method", "smooth", "--out",
+                        dir + "/smooth.json", "--quiet"})
                 .status,
             0);
   const RunResult r = RunProgram({"sweep", "--model", dir + "/smooth.json", "--from", "1", "--to",

@@ -2,7 +2,6 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
-#include <mutex>
 
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/grid.h"
@@ -23,37 +22,33 @@ std::unique_ptr<AlloyModel> BuildSampleModel(const Dataset& dataset, const FitSe
   return std::make_unique<SampleModel>(kind, dataset);
 }
 
+// The smooth fit's grid from the fit grid's options (checked: CheckFitGrid); empty for its
+// default (DefaultGrid), which a step alone keeps the range of.
+std::vector<double> SmoothGrid(const OptionValues& options, const Dataset& dataset) {
+  const bool range = options.Has("lambda_from_nm");
+  if (!range && !options.Has("lambda_step_nm")) return {};
+  const std::vector<double> fallback = range ? std::vector<double>{} : DefaultGrid(dataset);
+  return UniformGrid(range ? options.Number("lambda_from_nm") : fallback.front(),
+                     range ? options.Number("lambda_to_nm") : fallback.back(),
+                     options.Number("lambda_step_nm", kGridStepNm));
+}
+
 std::unique_ptr<AlloyModel> BuildSmooth(const Dataset& dataset, const FitSettings& settings) {
+  const OptionValues& given = settings.options;
   SmoothFitOptions options;
-  if (settings.smoothing != -1) {
-    if (!(std::isfinite(settings.smoothing) && settings.smoothing >= 0)) {
-      throw Error("--smoothing: need a finite value >= 0");
-    }
-    options.smoothing = settings.smoothing;
-  }
-  std::string space = settings.space;
+  options.smoothing = given.Number("smoothing", -1);
+  std::string space = given.Text("space", "");
   // A fold with no interior composition cannot choose the space of its curves: it takes
   // the one of the model it scores.
   if (const SmoothModel* parent = SmoothModel::From(settings.parent);
       parent != nullptr && space.empty() && DistinctCompositions(dataset).size() < 3) {
     space = SmoothSpaceName(parent->space());
   }
-  if (space == "eps") {
-    options.space = SmoothSpace::kEps;
-  } else if (space == "log_eps") {
-    options.space = SmoothSpace::kLogEps;
-  } else if (!space.empty()) {
-    throw Error("--space: '" + space + "' is none of eps, log_eps");
-  }
+  if (space == "eps") options.space = SmoothSpace::kEps;
+  if (space == "log_eps") options.space = SmoothSpace::kLogEps;
   options.progress = settings.progress;
   options.details = settings.details;
-  if (settings.lambda_from_nm != 0 || settings.lambda_to_nm != 0) {
-    const double step = settings.lambda_step_nm > 0 ? settings.lambda_step_nm : 5.0;
-    if (!(settings.lambda_to_nm > settings.lambda_from_nm) || !(settings.lambda_step_nm >= 0)) {
-      throw Error("--lambda-from/--lambda-to/--lambda-step: need from < to, step > 0");
-    }
-    options.grid_nm = UniformGrid(settings.lambda_from_nm, settings.lambda_to_nm, step);
-  }
+  options.grid_nm = SmoothGrid(given, dataset);
   options.start = SmoothModel::From(settings.start);
   if (settings.start != nullptr && options.start == nullptr) {
     throw Error("a smooth refit needs a smooth model to start from, not a " +
@@ -66,10 +61,11 @@ std::unique_ptr<AlloyModel> BuildSmooth(const Dataset& dataset, const FitSetting
 }
 
 std::unique_ptr<AlloyModel> BuildPhysical(const Dataset& dataset, const FitSettings& settings) {
+  const OptionValues& given = settings.options;
   PhysicalFitOptions options;
-  if (settings.degree >= 0) options.degree = settings.degree;
-  options.terms = settings.terms;
-  options.covariance = settings.covariance && !settings.fold;
+  options.degree = given.Whole("degree", options.degree);
+  options.terms = given.Text("terms", options.terms);
+  options.covariance = given.Flag("covariance", true) && !settings.fold;
   options.check_physics = !settings.fold;
   if (settings.memo) options.end_fits = FitMemoEndFits(*settings.memo);
   if (settings.max_iterations > 0) options.max_iterations = settings.max_iterations;
@@ -79,41 +75,30 @@ std::unique_ptr<AlloyModel> BuildPhysical(const Dataset& dataset, const FitSetti
   if (settings.fold) options.max_iterations = std::max(1, options.max_iterations / 5);
   options.progress = settings.progress;
   options.start = PhysicalModel::From(settings.start);
-  if (settings.lambda_from_nm != 0 || settings.lambda_to_nm != 0) {
-    if (!(settings.lambda_from_nm > 0) || !(settings.lambda_to_nm > settings.lambda_from_nm)) {
-      throw Error("--lambda-from/--lambda-to: need 0 < from < to");
-    }
-    options.lambda_from_nm = settings.lambda_from_nm;
-    options.lambda_to_nm = settings.lambda_to_nm;
-  }
-  if (settings.lambda_step_nm != 0) {
-    if (!(settings.lambda_step_nm > 0)) throw Error("--lambda-step: need a positive step");
-    options.lambda_step_nm = settings.lambda_step_nm;
-  }
+  options.lambda_from_nm = given.Number("lambda_from_nm", 0);
+  options.lambda_to_nm = given.Number("lambda_to_nm", 0);
+  options.lambda_step_nm = given.Number("lambda_step_nm", 0);
   return std::move(FitPhysical(dataset, options).model);
 }
 
+// The built-in methods' builders, attached to their registry entries before `main`.
+bool AttachBuiltInBuilders() {
+  const std::pair<const char*, MethodBuilder> builders[] = {
+      {"paper", &BuildSampleModel<SampleModel::Kind::kPaper>},
+      {"eps-linear", &BuildSampleModel<SampleModel::Kind::kEpsLinear>},
+      {"eps-pchip", &BuildSampleModel<SampleModel::Kind::kEpsPchip>},
+      {"eps-spline", &BuildSampleModel<SampleModel::Kind::kEpsSpline>},
+      {"smooth", &BuildSmooth},
+      {"physical", &BuildPhysical},
+  };
+  for (const auto& [name, build] : builders) AttachBuilder(name, build);
+  return true;
+}
+
+const bool kBuiltInBuildersAttached = AttachBuiltInBuilders();
+
 }  // namespace
 
-void AttachBuiltInBuilders() {
-  static std::once_flag once;
-  std::call_once(once, [] {
-    const std::pair<const char*, MethodBuilder> builders[] = {
-        {"paper", &BuildSampleModel<SampleModel::Kind::kPaper>},
-        {"eps-linear", &BuildSampleModel<SampleModel::Kind::kEpsLinear>},
-        {"eps-pchip", &BuildSampleModel<SampleModel::Kind::kEpsPchip>},
-        {"eps-spline", &BuildSampleModel<SampleModel::Kind::kEpsSpline>},
-        {"smooth", &BuildSmooth},
-        {"physical", &BuildPhysical},
-    };
-    for (const auto& [name, build] : builders) {
-      MethodInfo info = RequireMethod(name);
-      if (info.build == nullptr) {
-        info.build = build;
-        RegisterMethod(std::move(info));
-      }
-    }
-  });
-}
+bool BuiltInBuildersAttached() { return kBuiltInBuildersAttached; }
 
 }  // namespace alloycolor::fit

@@ -109,10 +109,10 @@ void ScoreFolds(const std::string& method, const std::vector<Fold>& folds,
 
 std::unique_ptr<AlloyModel> Build(const MethodInfo& method, const Dataset& dataset,
                                   const FitSettings& settings) {
-  AttachBuiltInBuilders();
-  const MethodInfo& entry = RequireMethod(method.name);  // the builder as attached now
-  if (entry.build == nullptr) throw Error("method '" + entry.name + "' cannot be fitted to data");
-  return entry.build(dataset, settings);
+  if (method.build == nullptr) {
+    throw Error("method '" + method.name + "' cannot be fitted to data");
+  }
+  return method.build(dataset, settings);
 }
 
 void AddFolds(const MethodInfo& method, const Dataset& dataset, const FitSettings& settings,

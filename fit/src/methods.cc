@@ -20,6 +20,13 @@ std::unique_ptr<AlloyModel> BuildModel(const std::string& method, const Dataset&
     with_memo.memo = MakeFitMemo();
     return BuildModel(method, dataset, with_memo);
   }
+  if (!settings.options_checked) {
+    // Once, before any work: the options against the method's declarations.
+    FitSettings checked = settings;
+    checked.options = CheckFitOptions(method, settings.options, dataset);
+    checked.options_checked = true;
+    return BuildModel(method, dataset, checked);
+  }
   if (DistinctCompositions(dataset).size() < 2) {
     std::string files;
     for (const Sample& s : dataset.samples) files += (files.empty() ? "" : ", ") + s.file;
@@ -30,7 +37,7 @@ std::unique_ptr<AlloyModel> BuildModel(const std::string& method, const Dataset&
                            " (" + files + ")"));
   }
   if (method == kAutoMethod) return BuildAuto(dataset, settings);
-  AttachBuiltInBuilders();
+  if (!BuiltInBuildersAttached()) throw Error("the built-in methods have no builders");
   const MethodInfo& info = RequireMethod(method);
   if (ChoosesDegree(info, settings)) {
     if (settings.colorimeter == nullptr) {

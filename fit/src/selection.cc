@@ -217,10 +217,10 @@ Scored BuildChoosingDegree(const MethodInfo& method, const Dataset& dataset,
                                   ", leave-one-out over " +
                                   std::to_string(ErrorFolds(dataset).size()) + " compositions");
     FitSettings at = settings;
-    at.degree = degree;
+    at.options.Set("degree", degree);
     at.progress = {};
     at.details = {};
-    at.covariance = false;
+    at.options.Set("covariance", false);
     at.max_iterations = kCandidateIterations;
     Scored r = candidates.empty() ? BuildScored(method, dataset, at)
                                   : BuildUnlessOutdone(method, dataset, at, candidates.front());
@@ -245,7 +245,7 @@ Scored BuildChoosingDegree(const MethodInfo& method, const Dataset& dataset,
     // at the silver end at degree 1): then the physical model is refused, as any fit that
     // leaves physics is, and auto goes on without it.
     FitSettings full = settings;
-    full.degree = degree;
+    full.options.Set("degree", degree);
     full.start = chosen.model.get();
     std::unique_ptr<AlloyModel> finished;
     try {
@@ -300,14 +300,11 @@ Scored RememberedDegreeChoice(const MethodInfo& method, const Dataset& dataset,
   if (!settings.memo || settings.start != nullptr) {
     return BuildChoosingDegree(method, dataset, settings);
   }
-  std::string key = method.name + '\n' + settings.terms;
+  std::string key = method.name + '\n' + settings.options.Key();
   const auto add = [&key](const void* bytes, size_t size) {
     key.append(static_cast<const char*>(bytes), size);
   };
-  const double numbers[] = {settings.lambda_from_nm, settings.lambda_to_nm,
-                            settings.lambda_step_nm};
-  add(numbers, sizeof numbers);
-  const int flags[] = {settings.covariance, settings.calibrate, settings.max_iterations};
+  const int flags[] = {settings.calibrate, settings.max_iterations};
   add(flags, sizeof flags);
   add(&settings.colorimeter, sizeof settings.colorimeter);
   for (const Sample& s : dataset.samples) {
@@ -342,7 +339,7 @@ Scored RememberedDegreeChoice(const MethodInfo& method, const Dataset& dataset,
 }
 
 bool ChoosesDegree(const MethodInfo& method, const FitSettings& settings) {
-  return method.traits.chooses_degree && settings.degree < 0 && !settings.fold;
+  return method.traits.chooses_degree && !settings.options.Has("degree") && !settings.fold;
 }
 
 namespace {

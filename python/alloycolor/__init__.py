@@ -21,6 +21,7 @@ one-line messages, and an exception raised in one stops the work and propagates.
 
 from __future__ import annotations
 
+import inspect
 import numbers
 import os
 import pathlib
@@ -60,7 +61,8 @@ def data_root() -> str:
 
 def methods() -> list:
     """The model methods of the registry: [{"name", "summary", "auto_rank" (its place in
-    auto's order, -1: not a candidate), "validate_default" (validate runs it by default)}]."""
+    auto's order, -1: not a candidate), "validate_default" (validate runs it by default),
+    "options" (the names of the options it takes: see :func:`fit`)}]."""
     return _core.methods()
 
 
@@ -73,14 +75,6 @@ def _real(name: str, value) -> float:
     if not isinstance(value, numbers.Real):
         raise Error("%s: %r is not a number" % (name, value))
     return float(value)
-
-
-def _fit_setting(name: str, setting: str, value) -> float:
-    """value checked by the library's range for the fit setting ``setting``; errors name
-    ``name``, the keyword it was given as."""
-    v = _real(name, value)
-    _core._check_fit_setting(setting, v, name)
-    return v
 
 
 def _whole(name: str, value, lo: float, hi: float) -> int:
@@ -460,65 +454,113 @@ class Model:
             self.lambda_max_nm)
 
 
-def _optional(value, default):
-    return default if value is None else value
+# Every method's options as the registry declares them (name, kind, range, choices, default,
+# help, the methods that take them): fit's keywords, its signature and docstring below, the
+# stubs and docs/methods.md's table (scripts/method_options.py) come from here.
+_METHOD_OPTIONS = {o["name"]: o for o in _core._method_options()}
+
+_OPTION_TYPES = {"whole": int, "number": float, "choice": str, "text": str, "flag": bool}
+
+# The fit grid as one keyword, (from, to, step) in nm: the options it stands for.
+_LAMBDA_RANGE = ("lambda_from_nm", "lambda_to_nm", "lambda_step_nm")
+_LAMBDA_LABELS = ("lambda_range_nm[0] (from)", "lambda_range_nm[1] (to)",
+                  "lambda_range_nm[2] (step)")
 
 
-def fit(dataset: Union[Dataset, str], method: str = "auto", *, degree: Optional[int] = None,
-        smoothing: Optional[float] = None, space: Optional[str] = None, terms: str = "auto",
-        lambda_range_nm: Optional[Sequence[float]] = None, covariance: bool = True,
-        progress: Optional[Callable[[str], None]] = None) -> Model:
-    """Fits ``method`` (see :func:`methods`) to a data set, as ``alloycolor fit`` does.
+def _option_value(option: dict, label: str, value):
+    """value as the option's kind takes it (a real number, text, True or False), checked
+    against the option's declaration by the library; errors name ``label``."""
+    kind = option["kind"]
+    if kind in ("whole", "number"):
+        v = _real(label, value)
+    elif kind == "flag":
+        v = _flag(label, value)
+    else:
+        v = _text(label, value)
+    _core._check_option(option["name"], v, label)
+    return v
+
+
+def _fit_options(options: dict, lambda_range_nm) -> dict:
+    """The options given (None: not given, the method's to choose), by the registry's
+    names; an unknown name goes on to the library, which refuses it naming the options."""
+    given = {}
+    for name, value in options.items():
+        if value is None:
+            continue
+        option = _METHOD_OPTIONS.get(name)
+        given[name] = value if option is None else _option_value(option, name, value)
+    if lambda_range_nm is not None:
+        if any(name in given for name in _LAMBDA_RANGE):
+            raise Error("lambda_range_nm: give it or %s, not both" % ", ".join(_LAMBDA_RANGE))
+        if (isinstance(lambda_range_nm, (str, bytes)) or np.ndim(lambda_range_nm) != 1
+                or len(lambda_range_nm) != 3):
+            raise Error("lambda_range_nm: give (from, to, step) in nm, three numbers, not %r"
+                        % (lambda_range_nm,))
+        for name, label, value in zip(_LAMBDA_RANGE, _LAMBDA_LABELS, lambda_range_nm):
+            given[name] = _option_value(_METHOD_OPTIONS[name], label, value)
+    return given
+
+
+def fit(dataset: Union[Dataset, str], method: str = "auto", *,
+        lambda_range_nm: Optional[Sequence[float]] = None,
+        progress: Optional[Callable[[str], None]] = None, **options) -> Model:
+    method = _text("method", method)
+    _callable("progress", progress)
+    given = _fit_options(options, lambda_range_nm)
+    if not isinstance(dataset, Dataset):
+        dataset = Dataset(dataset)
+    try:
+        core = _core._fit(dataset._core, method, given, progress)
+    except Error as e:
+        if lambda_range_nm is None:
+            raise
+        # The fit grid's joint checks name the options lambda_range_nm stands for.
+        message = str(e).replace("lambda_from_nm, lambda_to_nm: ", "lambda_range_nm: ")
+        raise Error(message.replace("lambda_step_nm: ", "lambda_range_nm: ")) from None
+    return Model(core, "built from data " + dataset._given)
+
+
+def _fit_signature() -> inspect.Signature:
+    """fit's signature with a keyword per declared option (its default: the declared one, or
+    None where the method chooses)."""
+    P = inspect.Parameter
+    params = [P("dataset", P.POSITIONAL_OR_KEYWORD, annotation=Union[Dataset, str]),
+              P("method", P.POSITIONAL_OR_KEYWORD, default="auto", annotation=str)]
+    for name, o in _METHOD_OPTIONS.items():
+        params.append(P(name, P.KEYWORD_ONLY, default=o["default"],
+                        annotation=Optional[_OPTION_TYPES[o["kind"]]]))
+    params.append(P("lambda_range_nm", P.KEYWORD_ONLY, default=None,
+                    annotation=Optional[Sequence[float]]))
+    params.append(P("progress", P.KEYWORD_ONLY, default=None,
+                    annotation=Optional[Callable[[str], None]]))
+    return inspect.Signature(params, return_annotation=Model)
+
+
+def _fit_doc() -> str:
+    lines = ["""Fits ``method`` (see :func:`methods`) to a data set, as ``alloycolor fit`` does.
 
     method: one of :func:`methods`, or "auto" (the default): every method scored by
     leave-one-composition-out on the samples and the best chosen, as ``alloycolor fit``
     chooses; the table behind the choice is in ``model.to_json()["fit"]["selection"]``.
+    Every method fitted to three compositions or more carries a cross-validated
+    uncertainty.
 
-    degree: composition degree (physical; default 2, or 1 where leave-one-out finds it clearly better; lowered where the fit leaves physics);
-    smoothing: roughness penalty across composition (smooth; default: chosen
-    by leave-one-composition-out, or with fewer than five compositions by the marginal
-    likelihood per wavelength; 0 interpolates); space: what the smooth model's curves
-    describe, "eps" or "log_eps" (ln|eps| and arg eps; default: log_eps where its
-    leave-one-out error is at least a third below eps's); terms: interband terms (physical);
-    lambda_range_nm: (from, to, step) of the fit grid; covariance: compute the physical
-    fit's parameter covariance; progress: called with one-line messages. Every method
-    fitted to three compositions or more carries a cross-validated uncertainty."""
-    method = _text("method", method)
-    degree = -1 if degree is None else int(_fit_setting("degree", "degree", degree))
-    smoothing = -1.0 if smoothing is None else _fit_setting("smoothing", "smoothing", smoothing)
-    space = "" if space is None else _text("space", space)
-    terms = _text("terms", terms)
-    covariance = _flag("covariance", covariance)
-    if progress is not None and not callable(progress):
-        raise Error("progress: %r is not callable" % (progress,))
-    lo = hi = step = 0.0
-    if lambda_range_nm is not None:
-        lo, hi, step = _lambda_range(lambda_range_nm)
-    if not isinstance(dataset, Dataset):
-        dataset = Dataset(dataset)
-    return Model(_core._fit(dataset._core, method, degree, smoothing, space, terms, lo, hi,
-                            step, covariance, progress),
-                 "built from data " + dataset._given)
+    The methods' options, as the registry declares them (an option the method does not
+    take is refused, naming the methods that do; None: not given, the method chooses):
+"""]
+    for name, o in _METHOD_OPTIONS.items():
+        default = "" if o["default"] is None else "; default %r" % (o["default"],)
+        lines.append("    %s (%s; %s%s): %s\n" % (name, ", ".join(o["methods"]), o["values"],
+                                                   default, o["help"]))
+    lines.append("""
+    lambda_range_nm: (from, to, step) of the fit grid, for lambda_from_nm, lambda_to_nm and
+    lambda_step_nm together; progress: called with one-line messages.""")
+    return "".join(lines)
 
 
-# The most nodes a fit grid has (the library's bound, as ``alloycolor fit`` keeps it).
-_MAX_FIT_GRID_NODES = _core._max_fit_grid_nodes
-
-
-def _lambda_range(value) -> tuple:
-    """(from, to, step) in nm, each checked by the library's ranges."""
-    if isinstance(value, (str, bytes)) or np.ndim(value) != 1 or len(value) != 3:
-        raise Error("lambda_range_nm: give (from, to, step) in nm, three numbers, not %r"
-                    % (value,))
-    lo = _fit_setting("lambda_range_nm[0] (from)", "lambda_from_nm", value[0])
-    hi = _fit_setting("lambda_range_nm[1] (to)", "lambda_to_nm", value[1])
-    step = _fit_setting("lambda_range_nm[2] (step)", "lambda_step_nm", value[2])
-    if not lo < hi:
-        raise Error("lambda_range_nm: from %g nm is not below to %g nm" % (lo, hi))
-    if (hi - lo) / step > _MAX_FIT_GRID_NODES:
-        raise Error("lambda_range_nm: a step of %g nm over %g-%g nm makes over %d grid nodes; "
-                    "give a larger step" % (step, lo, hi, _MAX_FIT_GRID_NODES))
-    return lo, hi, step
+fit.__signature__ = _fit_signature()
+fit.__doc__ = _fit_doc()
 
 
 def load_model(path: Union[str, os.PathLike]) -> Model:
@@ -627,13 +669,13 @@ def validate(dataset: Union[Dataset, str], methods: Union[None, str, Sequence[st
             raise Error("holdout: no composition given")
         mode = "holdout"
     if methods is None:
-        methods = [m["name"] for m in _core.methods() if m["validate_default"]]
-    elif methods == "all":
-        methods = [m["name"] for m in _core.methods()] + ["auto"]
-    elif isinstance(methods, str):
-        methods = [m.strip() for m in methods.split(",")]
-    for m in methods:
-        _text("methods", m)
+        methods = ""
+    elif not isinstance(methods, str):
+        listed = [_text("methods", m) for m in methods]
+        if not listed:
+            raise Error("methods: no method given")
+        methods = ",".join(listed)
+    methods = _core._method_list(methods, "methods")  # "all", defaults: the library's rule
     return _core._validate(dataset._core, list(methods), names, mode,
                            [float(a) for a in np.atleast_1d(_real_array("angles_deg",
                                                                         angles_deg))],

@@ -15,6 +15,9 @@ class Error(ValueError): ...
 class MethodInfo(TypedDict):
     name: str
     summary: str
+    auto_rank: int          # its place in auto's order; -1: not a candidate
+    validate_default: bool  # validate runs it when no method is named
+    options: list[str]      # the options it takes (fit's keywords)
 
 class ColorResult(TypedDict):
     xyz: np.ndarray          # shape S + (3,), float64; a perfect reflector has Y = 1
@@ -94,10 +97,18 @@ class Model:
     def write_spd(self, x: Union[float, str], eta_path: _Path, k_path: _Path,
                   material: Optional[str] = ...) -> None: ...
 
-def fit(dataset: Union[Dataset, _Path], method: str = ..., *, degree: Optional[int] = ...,
-        smoothing: Optional[float] = ..., space: Optional[str] = ..., terms: str = ...,
-        lambda_range_nm: Optional[Sequence[float]] = ..., covariance: bool = ...,
-        progress: _Progress = ...) -> Model: ...
+def fit(dataset: Union[Dataset, _Path], method: str = ..., *,
+        # options: generated from the registry by scripts/method_options.py; do not edit
+        smoothing: Optional[float] = ...,
+        space: Optional[str] = ...,
+        lambda_from_nm: Optional[float] = ...,
+        lambda_to_nm: Optional[float] = ...,
+        lambda_step_nm: Optional[float] = ...,
+        degree: Optional[int] = ...,
+        terms: Optional[str] = ...,
+        covariance: Optional[bool] = ...,
+        # end of options
+        lambda_range_nm: Optional[Sequence[float]] = ..., progress: _Progress = ...) -> Model: ...
 def load_model(path: _Path) -> Model: ...
 def color(source: Union[Model, Spectrum, _Path], x: Optional[_X] = ..., angle_deg: npt.ArrayLike = ...,
           illuminant: Union[str, Sequence[str]] = ..., observer: npt.ArrayLike = ...,

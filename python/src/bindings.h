@@ -34,6 +34,7 @@
 #include "alloycolor/core/json.h"
 #include "alloycolor/core/parallel.h"
 #include "alloycolor/core/progress.h"
+#include "alloycolor/core/setting.h"
 #include "alloycolor/model/alloy_model.h"
 
 namespace alloycolor::python {
@@ -64,6 +65,10 @@ py::object JsonToPython(const nlohmann::json& doc);
 // A library message in the package's words: the command-line spellings of settings that
 // the library's messages still name replaced by the keywords of this package.
 std::string PythonWords(std::string message);
+
+// A method option's value from Python: a bool, a number (int or float) or text (registry.cc).
+OptionValue OptionFromPython(const py::handle& value);
+OptionValues OptionsFromPython(const py::dict& options);
 
 // ---- the topics, in the order module.cc adds them -----------------------------------------
 

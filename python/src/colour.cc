@@ -10,16 +10,11 @@
 #include "alloycolor/color/material_color.h"
 #include "alloycolor/color/sweep.h"
 #include "alloycolor/core/error.h"
+#include "alloycolor/core/setting.h"
 #include "bindings.h"
 
 namespace alloycolor::python {
 namespace {
-
-void CheckAngle(double angle_deg) {
-  if (!(angle_deg >= 0.0 && angle_deg <= 90.0)) {
-    throw Error("angle_deg: " + std::to_string(angle_deg) + " lies outside 0-90 degrees");
-  }
-}
 
 // ---- colour ----------------------------------------------------------------------------
 
@@ -81,7 +76,7 @@ py::dict ModelColors(const AlloyModel& model, const Array& x_in, const Array& an
                      const std::string& illuminant, int observer_deg, bool sigma, bool exact) {
   if (x_in.size() != angle_in.size()) throw Error("color: x and angle_deg differ in length");
   const std::vector<double> xs = ToVector(x_in), angles = ToVector(angle_in);
-  for (double a : angles) CheckAngle(a);
+  for (double a : angles) CheckAngleDeg("angle_deg", a);
   for (double x : xs) model.CheckInRange(x);
   const bool with_sigma = sigma && model.HasUncertainty();
   ColorArrays arrays = MakeColorArrays(static_cast<py::ssize_t>(xs.size()));
@@ -111,7 +106,7 @@ py::dict ModelColors(const AlloyModel& model, const Array& x_in, const Array& an
 py::dict SpectrumColors(const NkSpectrum& nk, const Array& angle_in, const std::string& illuminant,
                         int observer_deg) {
   const std::vector<double> angles = ToVector(angle_in);
-  for (double a : angles) CheckAngle(a);
+  for (double a : angles) CheckAngleDeg("angle_deg", a);
   ColorArrays arrays = MakeColorArrays(static_cast<py::ssize_t>(angles.size()));
   const ColorPointers p = Pointers(arrays);
   {

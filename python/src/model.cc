@@ -42,22 +42,12 @@ py::array_t<std::complex<double>> ModelOptics(const AlloyModel& model, const Arr
 }  // namespace
 
 ModelClass BindModel(py::module_& m) {
-  m.def("_fit", [](const Dataset& dataset, const std::string& method, int degree, double smoothing,
-                   const std::string& space, const std::string& terms, double lambda_from_nm,
-                   double lambda_to_nm, double lambda_step_nm, bool covariance,
+  m.def("_fit", [](const Dataset& dataset, const std::string& method, const py::dict& options,
                    const py::object& progress) {
-    if (method != fit::kAutoMethod) RequireMethod(method);
     fit::FitSettings settings;
     ThreadBudget threads;  // every core, as the program's default
     settings.threads = &threads;
-    settings.degree = degree;
-    settings.smoothing = smoothing;
-    settings.space = space;
-    settings.terms = terms;
-    settings.lambda_from_nm = lambda_from_nm;
-    settings.lambda_to_nm = lambda_to_nm;
-    settings.lambda_step_nm = lambda_step_nm;
-    settings.covariance = covariance;
+    settings.options = OptionsFromPython(options);
     settings.progress = PythonProgress(progress);
     // As `alloycolor fit`: auto and the sigma calibration score colour under D65, 2 degrees.
     settings.colorimeter = &GetColorimeter("D65", 2);

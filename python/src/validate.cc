@@ -4,6 +4,7 @@
 
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/output.h"
+#include "alloycolor/core/setting.h"
 #include "alloycolor/fit/methods.h"
 #include "alloycolor/model/registry.h"
 #include "alloycolor/validate/report.h"
@@ -21,10 +22,7 @@ void BindValidate(py::module_& m) {
           for (const std::string& method : methods) {
             if (method != fit::kAutoMethod) RequireMethod(method);
           }
-          for (double a : angles_deg) {
-            if (!(a >= 0 && a < 90))
-              throw Error("angles_deg: " + std::to_string(a) + " lies outside 0-90 degrees");
-          }
+          for (double a : angles_deg) CheckAngleDeg("angles_deg", a);
           // As `alloycolor validate`: no names, leave each interior composition out (with
           // its replicates); otherwise one split of files and compositions.
           std::vector<validate::SampleSplit> splits;

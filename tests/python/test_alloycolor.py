@@ -86,7 +86,7 @@ def test_measured_colour_equals_numpy_chain(angle, illuminant, observer):
 
 
 def test_model_colour_equals_numpy_chain_over_arrays(au_ag):
-    model = ac.fit(au_ag, "smooth", degree=3, covariance=False)
+    model = ac.fit(au_ag, "smooth")
     xs = np.array([0.05, 0.33, 0.75])
     angles = np.array([[0.0], [45.0]])
     c = model.color(xs, angle_deg=angles)

@@ -37,8 +37,8 @@ def test_a_loaded_model_saves_over_its_own_file(tmp_path, model):
 @pytest.mark.parametrize("options, needles", [
     (dict(method="smooth", smoothing=-1), ["smoothing", "-1", "[0, 1000000]"]),
     (dict(method="smooth", smoothing=float("nan")), ["smoothing", "nan"]),
-    (dict(method="physical", degree=-3), ["degree", "-3", "whole number in [0, 20]"]),
-    (dict(method="physical", degree=10**12), ["degree", "whole number in [0, 20]"]),
+    (dict(method="physical", degree=-3), ["degree", "-3", "whole number in [0, 6]"]),
+    (dict(method="physical", degree=10**12), ["degree", "whole number in [0, 6]"]),
     (dict(method="physical", degree=2.5), ["degree", "2.5"]),
     (dict(method="physical", degree=True), ["degree", "boolean"]),
     (dict(method="physical", degree=2 + 0j), ["degree", "complex"]),

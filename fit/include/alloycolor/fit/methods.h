@@ -1,16 +1,17 @@
 // Building a model from a data set, for every method of the registry (model/registry.h):
 // fitting is the only place that builds a model from data, so the built-in methods'
-// builders sit here (fit/src/builders.cc) and are attached to their registry entries before
-// the first build. Baselines that keep the samples (paper, eps-linear) need no solver; the
-// fitted methods run their Ceres fits (smooth_fit.h, physical_fit.h).
+// builders sit here (fit/src/builders.cc), attached to their registry entries by a static
+// initializer there, before `main`. Baselines that keep the samples (paper, eps-linear) need no
+// solver; the fitted methods run their Ceres fits (smooth_fit.h, physical_fit.h).
 //
 // The layout of the library: builders.cc (one builder per method), folds.cc (the
 // leave-one-composition-out folds and their held-out errors), prediction_error.cc (the
 // error bars from the folds and the in-sample misfit), selection.cc (`auto` and the
 // physical degree), methods.cc (BuildModel, which ties them together).
 //
-// FitSettings are the options a user can give any method; a method uses those that apply
-// to it and refuses values that make no sense for it, naming the option.
+// FitSettings carry the options a user gave (OptionValues, checked once by BuildModel
+// against the method's declarations in the registry) and how the fit runs (threads,
+// progress, the colorimeter that scores colour, what folds and refits pass down).
 #ifndef ALLOYCOLOR_FIT_METHODS_H_
 #define ALLOYCOLOR_FIT_METHODS_H_
 
@@ -23,7 +24,9 @@
 #include "alloycolor/core/dataset.h"
 #include "alloycolor/core/parallel.h"
 #include "alloycolor/core/progress.h"
+#include "alloycolor/core/setting.h"
 #include "alloycolor/model/alloy_model.h"
+#include "alloycolor/model/registry.h"
 
 namespace alloycolor::fit {
 
@@ -37,16 +40,17 @@ std::shared_ptr<FitMemo> MakeFitMemo();
 
 struct FitSettings {
   ThreadBudget* threads = nullptr;  // the threads its folds may share; none: one at a time
-  int degree = -1;                  // physical: composition degree; < 0: the method's default
-  double smoothing = -1;  // smooth: roughness penalty across composition; -1: cross-validated
-  // smooth: the space of its curves, "eps" or "log_eps"; empty: chosen by its leave-one-out
-  // (a fold of the prediction error or of auto that has no interior composition to choose
-  // by takes the space of the model it scores).
-  std::string space;
-  std::string terms = "auto";  // physical: interband terms
-  // Fit grid: both 0 for the method's default range; step 0 for its default step.
-  double lambda_from_nm = 0, lambda_to_nm = 0, lambda_step_nm = 0;
-  bool covariance = true;
+  // The method's options as given, by name (model/registry.h declares each method's:
+  // smooth's smoothing and space, physical's degree, terms and covariance, the fit grid's
+  // lambda_from_nm, lambda_to_nm, lambda_step_nm; docs/methods.md lists them). BuildModel
+  // checks them against the declarations (CheckFitOptions) and fills in the declared
+  // defaults; an option not given is the method's to choose (a fold of the prediction
+  // error or of auto that has no interior composition to choose smooth's space by takes
+  // the space of the model it scores).
+  OptionValues options;
+  // Set by BuildModel once `options` are checked: the candidates, folds and refits it
+  // builds with them take them as they are.
+  bool options_checked = false;
   // Estimate the model's prediction error (PredictionError) by leave-one-composition-out:
   // one more fit per interior composition (at most 20).
   bool calibrate = true;
@@ -85,7 +89,7 @@ struct FitSettings {
 // line, so it cannot compare the curves delivered: smooth is chosen (unless it failed).
 // With fewer, nothing can be held out and the first in order is chosen (with two samples every
 // interpolation is the line). The chosen model carries the table (FitSummary::selection).
-inline constexpr const char* kAutoMethod = "auto";
+inline constexpr const char* kAutoMethod = kAutoMethodName;
 std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings& settings);
 
 // The calibration of a prediction error's one-sigma colour uncertainty from its folds'
@@ -98,9 +102,24 @@ std::unique_ptr<AlloyModel> BuildAuto(const Dataset& dataset, const FitSettings&
 double SigmaCalibration(const std::vector<double>& errors, const std::vector<double>& sigmas,
                         int folds);
 
-// Attaches the built-in methods' builders to their registry entries (once; BuildModel does
-// it before building).
-void AttachBuiltInBuilders();
+// Whether the built-in methods' builders are in the registry (they are attached by a
+// static initializer of the fit library; BuildModel refers to this so that the linker
+// keeps it).
+bool BuiltInBuildersAttached();
+
+// The fit grid's options checked together against the data set: lambda_from_nm and
+// lambda_to_nm given together, from below to, and at most kMaxFitGridNodes nodes
+// ((to - from) / lambda_step_nm, from and to the samples' common range where not given).
+// Throws Error naming the options as `spelling` spells them.
+void CheckFitGrid(const OptionValues& options, const Dataset& dataset, OptionSpelling spelling);
+
+// What BuildModel checks before any work, for a face that names options its own way (the
+// program: by flag) and checks before it reads or writes anything else: `given` against
+// the method's declarations (model/registry.h CheckMethodOptions) and the fit grid
+// (CheckFitGrid). Returns the options with the declared defaults.
+OptionValues CheckFitOptions(const std::string& method, const OptionValues& given,
+                             const Dataset& dataset,
+                             OptionSpelling spelling = OptionSpelling::kName);
 
 // Builds `method` on the data set and, with settings.calibrate and three compositions or
 // more, estimates its prediction error: each interior composition (20 at most, spread by
@@ -111,8 +130,8 @@ void AttachBuiltInBuilders();
 // calibration (SigmaCalibration) then scales the one-sigma colour uncertainty to the
 // folds' held-out CIEDE2000 errors, each fold's sigma from the other folds' scale
 // (colorimeter and visible data needed; 1 otherwise). Throws Error for an unknown method
-// (listing the known ones), a bad setting (naming the option) or data the method cannot
-// use.
+// (listing the known ones), an option the method does not take or a value its declaration
+// refuses (naming the option: CheckFitOptions), or data the method cannot use.
 std::unique_ptr<AlloyModel> BuildModel(const std::string& method, const Dataset& dataset,
                                        const FitSettings& settings = {});
 

@@ -1,31 +1,49 @@
 // The one registry of methods: every model of eps(lambda, x) has an entry here, and it is
 // the one place that knows a method. An entry carries its name (the "method" of the model
 // file and of --method), a one-line summary, its reader from a model file, its builder
-// from data (set by the fit library, which alone builds models: fit/methods.h) and its
-// traits: where `auto` ranks it, the shape of its error bars, whether `validate` runs it
-// by default, how its leave-one-out folds are fitted. Reading a model file, listing
-// methods, `auto`'s candidates, `validate`'s defaults and every face ask the registry;
-// nothing else compares method names.
+// from data (fit/methods.h: fitting is the only place that builds a model), its traits
+// (where `auto` ranks it, the shape of its error bars, whether `validate` runs it by
+// default, how its leave-one-out folds are fitted) and the options it takes, each
+// declared once (core/setting.h OptionSpec: name, kind, range or choices, default, help).
+// Reading a model file, listing methods, `auto`'s candidates, `validate`'s defaults,
+// checking a method's options and every face ask the registry; nothing else compares
+// method names, and the faces' options are generated from the declarations.
+//
+// The registry is complete before `main` (or a Python module's import) returns: the
+// built-in entries are made on first use, the fit library attaches their builders from a
+// static initializer (fit/src/builders.cc), and a method from outside registers the same
+// way (MethodRegistration at namespace scope). The first read seals it: from then on it
+// never changes, so reading it is safe from any thread, and a later registration is an
+// error rather than a race.
 //
 // Adding a method: its model files (model/include/alloycolor/model/*, model/src/*), its
-// builder (fit/src/builders.cc) and one entry in Methods() (model/src/registry.cc); or, from
-// outside the library, RegisterMethod with the builder given.
+// builder (fit/src/builders.cc) and one entry in the built-in table (model/src/registry.cc);
+// or, from outside the library, one file pair holding the model, its builder and one
+// MethodRegistration (tests/toy_method.cc does so; docs/architecture.md).
 #ifndef ALLOYCOLOR_MODEL_REGISTRY_H_
 #define ALLOYCOLOR_MODEL_REGISTRY_H_
 
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "alloycolor/core/dataset.h"
+#include "alloycolor/core/setting.h"
 #include "alloycolor/model/alloy_model.h"
 
 namespace alloycolor {
 
 namespace fit {
-struct FitSettings;  // fit/methods.h: the options a user gives any method
+struct FitSettings;  // fit/methods.h: the options given and how the fit runs
 }
+
+// `auto`, which the fit library runs over the candidates (fit/methods.h BuildAuto), and
+// `all` (every method, then auto), where a face takes a list of methods: no method is
+// named either.
+inline constexpr const char* kAutoMethodName = "auto";
+inline constexpr const char* kAllMethodsName = "all";
 
 // What the rest of the toolkit needs to know of a method, so that nothing else asks its name.
 struct MethodTraits {
@@ -64,10 +82,13 @@ struct MethodInfo {
   // Reads the model from a model file's document (format and version already checked);
   // throws Error naming `source` and the field at fault.
   MethodReader read = nullptr;
-  // Builds the model on a data set (fit/methods.h BuildModel calls it); null for a method
-  // whose builder the fit library has not attached yet (it does so before building).
+  // Builds the model on a data set (fit/methods.h BuildModel calls it, its options
+  // checked); for the built-in methods, attached by the fit library at start-up.
   MethodBuilder build = nullptr;
   MethodTraits traits;
+  // The options it takes, each once. An option several methods take (the fit grid) is
+  // declared alike by each; the registry refuses two declarations that differ.
+  std::vector<OptionSpec> options;
 };
 
 // Every method, in the order they are listed to users (registration order).
@@ -82,11 +103,50 @@ std::string MethodNamesText();
 // Throws Error("unknown method 'x' (paper, eps-linear, ...)") for an unknown name.
 const MethodInfo& RequireMethod(const std::string& name);
 
-// Adds a method (a new name), or completes an entry of that name (a builder where it had
-// none; the other fields as given). Registration happens before any concurrent use of the
-// registry (at start-up, or in a test before its fits); references from Methods() stay
-// valid until the next registration.
+// Adds a method (a new name), or replaces the entry of that name (the fit library gives the
+// built-in entries their builders so). Throws Error for a reserved or empty name, a method
+// without a reader, an option declared twice or unlike another method's declaration of it,
+// and once the registry has been read (it is sealed then: register at start-up).
 void RegisterMethod(MethodInfo info);
+
+// Gives the entry `name` its builder, under RegisterMethod's rules (the fit library
+// attaches the built-in methods' builders so, before `main`).
+void AttachBuilder(const std::string& name, MethodBuilder build);
+
+// Registers a method from a static initializer, before `main`:
+//   const MethodRegistration kToy{ToyMethodInfo()};
+struct MethodRegistration {
+  explicit MethodRegistration(MethodInfo info) { RegisterMethod(std::move(info)); }
+};
+
+// ---- the methods' options ---------------------------------------------------------------
+
+// An option with the methods that declare it.
+struct DeclaredOption {
+  OptionSpec spec;
+  std::vector<std::string> methods;  // registry order
+};
+
+// Every method's options, each once, in the order first declared.
+std::vector<DeclaredOption> DeclaredOptions();
+
+// The declaration of option `name`, or nullptr when no method declares one.
+const OptionSpec* FindOption(const std::string& name);
+
+// The options `given` for `method` checked against its declarations, once, before any
+// work: an option no method declares, one `method` does not take (naming the methods that
+// do) and a value outside its declaration are refused with an Error naming the option as
+// `spelling` spells it. For auto (kAutoMethodName) an option is taken when one of its
+// candidates takes it; one only methods outside auto take is refused, naming them.
+// Returns the options given plus the declared defaults of those the method (auto: any
+// candidate) takes and was not given.
+OptionValues CheckMethodOptions(const std::string& method, const OptionValues& given,
+                                OptionSpelling spelling = OptionSpelling::kName);
+
+// A list of methods as the faces take it: comma-separated names (auto among them), "all"
+// (every method, then auto) or "" (DefaultValidationMethods); each once, in the order
+// given. Throws Error naming `option` for an unknown or empty name.
+std::vector<std::string> MethodList(const std::string& text, const std::string& option);
 
 // The methods `validate` runs by default, in registry order.
 std::vector<std::string> DefaultValidationMethods();

@@ -16,9 +16,11 @@
 #include <string>
 #include <vector>
 
+#include "alloycolor/core/dataset.h"
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/io.h"
 #include "alloycolor/core/text.h"
+#include "alloycolor/model/alloy_model.h"
 #include "test_util.h"
 
 namespace alloycolor::testing {
@@ -276,9 +278,23 @@ TEST(FileBytes, AFileInUtf16IsNamedWithItsEncoding) {
   ExpectOneError(RunProgram({"color", "--nk", csv}), {csv + ":2"});
 }
 
-// The library's messages are valid UTF-8 whatever bytes they quote, and keep what is
-// valid: µ (C2 B5) stays, a lone B5 or an overlong C0 AF becomes '?'.
+// The library's messages are valid UTF-8 whatever bytes they quote (what Python receives
+// too: the program's own line is made safe again by main), and keep what is valid: µ (C2
+// B5) stays, a lone B5 or an overlong C0 AF becomes '?'.
 TEST(FileBytes, MessagesAreValidUtf8) {
+  const std::string dir = MakeTempDir();
+  const std::string bytes = "\xB5\xFF\xFE\xC0\xAF";
+  WriteText(dir + "/m.json", "{\"format\": " + bytes + "}");
+  WriteText(dir + "/nk.csv", "lambda_nm,n,k\n400," + bytes + ",1\n500,1,2\n");
+  WriteText(dir + "/nk.yml", "DATA:\n  - type: tabulated nk\n    data: " + bytes + "\n");
+  WriteText(dir + "/dataset.json", "{\"name\": " + bytes + "}");
+  for (const std::string& message :
+       {ErrorOf([&] { ReadModelFile(dir + "/m.json"); }),
+        ErrorOf([&] { ReadNkFile(dir + "/nk.csv"); }),
+        ErrorOf([&] { ReadNkFile(dir + "/nk.yml"); }), ErrorOf([&] { LoadDataset(dir); })}) {
+    EXPECT_TRUE(ValidUtf8(message)) << message;
+    EXPECT_NE(message.find(dir), std::string::npos) << message;
+  }
   EXPECT_EQ(Quote("\xC2\xB5m"), "'\xC2\xB5m'");
   EXPECT_EQ(Quote("\xB5m"), "'?m'");
   EXPECT_EQ(Quote("a\xC0\xAF"), "'a??'");

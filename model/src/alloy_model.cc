@@ -779,7 +779,8 @@ std::unique_ptr<AlloyModel> ReadModelFile(const std::string& path) {
   try {
     doc = nlohmann::json::parse(text, RejectDuplicateKeys(path));
   } catch (const nlohmann::json::exception& e) {  // parse_error, or out_of_range for 1e999
-    throw Error(path + ": not valid JSON (" + e.what() + ")");
+    // Fail: the bytes nlohmann quotes ("last read: '\xFF'") made safe.
+    Fail(path + ": not valid JSON (" + e.what() + ")");
   }
   return ModelFromJson(doc, path);
 }

@@ -135,12 +135,18 @@ void Run(const ColorOptions& o) {
                           {"x_given", given.at(i)},
                           {"x_weight", WeightFromAtomicFraction(x, model->system())}};
       r.update(color::ColorJson(c));
-      if (sigma >= 0) r["delta_e00_sigma"] = sigma;
+      if (sigma >= 0) {
+        r["delta_e00_sigma"] = sigma;
+      } else {
+        r["delta_e00_sigma"] = nullptr;
+        r["error_bar"] = model->NoErrorBarReason();
+      }
       results.push_back(r);
     } else {
       PrintRow(&text, labels[i], c, sigma, label_width);
     }
   }
+  if (!o.json && !model->HasUncertainty()) text += model->NoErrorBarReason() + "\n";
   if (o.json) {
     nlohmann::json out = common;
     out["system"] = model->system().Name();

@@ -13,6 +13,7 @@
 #include "alloycolor/core/output.h"
 #include "alloycolor/core/parallel.h"
 #include "alloycolor/core/text.h"
+#include "alloycolor/fit/lineage.h"
 #include "alloycolor/fit/methods.h"
 #include "alloycolor/model/registry.h"
 #include "common.h"
@@ -33,27 +34,58 @@ struct FitOptions {
   int threads = 0;
 };
 
-// The largest change in n and k between two models over their common range, at
-// compositions spread over the new model's range.
+// "2.1 sigma" or "" where there is no error bar.
+std::string SigmaRatio(double error, double sigma) {
+  if (!(sigma > 0) || !std::isfinite(error)) return "";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2g sigma", error / sigma);
+  return text;
+}
+
+// What the old model said of each sample the refit added (the new history entry), whether
+// the method changed, and the largest change in n and k between the two models over their
+// common range, at compositions spread over the new model's range.
 void ReportChanges(const AlloyModel& old_model, const AlloyModel& model) {
-  std::map<std::string, const TrainingSample*> before, after;
-  for (const auto& s : old_model.training_samples()) before[s.file] = &s;
-  for (const auto& s : model.training_samples()) after[s.file] = &s;
-  for (const auto& [file, s] : after) {
-    auto it = before.find(file);
-    if (it == before.end()) {
-      std::fprintf(stderr, "alloycolor: refit: added sample %s (x = %g)\n", file.c_str(),
-                   s->x_atomic);
-    } else if (it->second->checksum != s->checksum) {
-      std::fprintf(stderr, "alloycolor: refit: sample %s changed (checksum %s -> %s)\n",
-                   file.c_str(), it->second->checksum.c_str(), s->checksum.c_str());
+  const HistoryEntry& entry = model.history().back();
+  for (const AddedSample& a : entry.added) {
+    char x[32];
+    std::snprintf(x, sizeof x, "%.4g", a.x_atomic);
+    std::string line = "refit: added " + a.file + " (x = " + x + "): ";
+    if (std::isfinite(a.delta_e00)) {
+      char figures[200];
+      if (std::isfinite(a.sigma_de00)) {
+        std::snprintf(figures, sizeof figures,
+                      "the old %s model predicted it off by dE00 %.3g at one-sigma %.3g (%s; "
+                      "reflectance RMS %.3g)",
+                      old_model.method().c_str(), a.delta_e00, a.sigma_de00,
+                      SigmaRatio(a.delta_e00, a.sigma_de00).c_str(), a.reflectance_rms);
+      } else {
+        std::snprintf(figures, sizeof figures,
+                      "the old %s model predicted it off by dE00 %.3g (reflectance RMS %.3g)",
+                      old_model.method().c_str(), a.delta_e00, a.reflectance_rms);
+      }
+      line += figures;
+      line += ": " + a.verdict;
+      if (a.verdict.rfind("beyond two sigma", 0) == 0) {
+        line += ": the old model did not expect this measurement";
+      }
+    } else {
+      line += a.verdict;
     }
+    std::fprintf(stderr, "alloycolor: %s\n", line.c_str());
   }
-  for (const auto& [file, s] : before) {
-    if (!after.count(file)) {
-      std::fprintf(stderr, "alloycolor: refit: removed sample %s (x = %g)\n", file.c_str(),
-                   s->x_atomic);
-    }
+  for (const TrainingSample& t : entry.changed) {
+    std::fprintf(stderr, "alloycolor: refit: sample %s changed since the old model\n",
+                 t.file.c_str());
+  }
+  for (const TrainingSample& t : entry.removed) {
+    std::fprintf(stderr, "alloycolor: refit: removed sample %s (x = %s)\n", t.file.c_str(),
+                 FormatNumber(t.x_atomic).c_str());
+  }
+  if (old_model.method() != model.method()) {
+    std::fprintf(stderr, "alloycolor: refit: the method changed from %s to %s%s\n",
+                 old_model.method().c_str(), model.method().c_str(),
+                 model.fit_summary().selection.present() ? " (auto's choice on the new data)" : "");
   }
   if (old_model.fit_summary().present() && model.fit_summary().present()) {
     std::fprintf(stderr, "alloycolor: refit: final cost %.6g -> %.6g\n",
@@ -134,6 +166,27 @@ void ReportFit(const AlloyModel& model, double seconds, bool verbose) {
   }
 }
 
+// The samples the manifest set aside, each as the model (which never saw it) predicts it.
+void ReportExcluded(const AlloyModel& model) {
+  for (const SampleNote& n : model.excluded_samples()) {
+    std::string line = "set aside: " + n.file + " (x = " + FormatNumber(n.x_atomic) +
+                       "): " + n.reason + "; held out, the model predicts it off by ";
+    char figures[80];
+    if (std::isfinite(n.delta_e00)) {
+      std::snprintf(figures, sizeof figures, "dE00 %.3g", n.delta_e00);
+      line += figures;
+      if (std::isfinite(n.sigma_de00)) {
+        std::snprintf(figures, sizeof figures, " at one-sigma %.3g", n.sigma_de00);
+        line += figures;
+      }
+    } else {
+      std::snprintf(figures, sizeof figures, "reflectance RMS %.3g", n.reflectance_rms);
+      line += figures;
+    }
+    std::fprintf(stderr, "alloycolor: %s\n", line.c_str());
+  }
+}
+
 void Run(const FitOptions& o) {
   ThreadBudget threads(o.threads);
   if (o.out.empty()) throw Error("--out: give the model file to write");
@@ -177,7 +230,8 @@ void Run(const FitOptions& o) {
   settings.details = ProgressPrinter(!o.verbose);
   const color::Colorimeter colorimeter = LoadColorimeter("D65", 2);
   settings.colorimeter = &colorimeter;
-  const std::unique_ptr<AlloyModel> model = fit::BuildModel(o.method, dataset, settings);
+  const std::unique_ptr<AlloyModel> model =
+      fit::FitDataSet(o.method, dataset, settings, {old_model.get(), NowUtcIso8601()});
   // The file must be one the other commands can use: read back as they will read it.
   const std::string text = ModelFileText(*model);
   try {
@@ -191,6 +245,7 @@ void Run(const FitOptions& o) {
     for (const auto& w : model->warnings()) Warn(w);
     ReportFit(*model, seconds, o.verbose);
   }
+  if (!o.quiet) ReportExcluded(*model);
   // What --refit asked for: said even with --quiet.
   if (old_model) ReportChanges(*old_model, *model);
   WriteOutput(o.out, text, o.quiet);

@@ -21,12 +21,6 @@ struct ParamsOptions {
   bool quiet = false;
 };
 
-nlohmann::json ToJson(const ParameterTable::Quantity& q) {
-  if (!std::isfinite(q.value)) return nullptr;
-  return {{"value", q.value},
-          {"sigma", std::isfinite(q.sigma) ? nlohmann::json(q.sigma) : nullptr}};
-}
-
 std::string Text(const ParameterTable::Quantity& q, bool with_sigma) {
   if (!std::isfinite(q.value)) return "-";
   char buf[64];
@@ -36,20 +30,6 @@ std::string Text(const ParameterTable::Quantity& q, bool with_sigma) {
     std::snprintf(buf, sizeof buf, "%.5g", q.value);
   }
   return buf;
-}
-
-std::string ElementsLine(const AlloySystem& system) {
-  std::ostringstream line;
-  line << "N_e(x) = (x Z_a + (1-x) Z_b) N_A / (x M_a/rho_a + (1-x) M_b/rho_b) (ideal mixing); ";
-  for (const Element* e : {&system.a, &system.b}) {
-    line << e->symbol << ": Z = " << e->valence
-         << (e->valence_conventional ? " (conventional: no free-electron valence in Ashcroft & "
-                                       "Mermin Table 1.1; m* scales with it)"
-                                     : "")
-         << ", rho = " << e->density_g_cm3 << " g/cm3, M = " << e->atomic_mass << " g/mol"
-         << (e == &system.a ? "; " : "");
-  }
-  return line.str();
 }
 
 // Columns padded to their widest cell ("±" is two bytes and one column).
@@ -89,37 +69,21 @@ void Run(const ParamsOptions& o) {
                                       : ParseCompositions(o.to_text, model->system(), "--to").at(0);
   CheckComposition(*model, from, o.source.extrapolate);
   CheckComposition(*model, to, o.source.extrapolate);
+  if (o.format == "json") {
+    PrintOutput(JsonText(ParameterCurvesJson(*model, from, to, o.steps), 1) + "\n");
+    return;
+  }
   std::vector<double> xs;
   for (int i = 0; i < o.steps; ++i) {
     xs.push_back(o.steps == 1 ? from : from + (to - from) * i / (o.steps - 1.0));
   }
   const ParameterTable table = model->Parameters(xs);
   const bool with_sigma = model->HasUncertainty();
-  if (o.format == "json") {
-    nlohmann::json rows = nlohmann::json::array();
-    for (size_t i = 0; i < table.rows.size(); ++i) {
-      nlohmann::json row = {
-          {"x", table.x_atomic[i]},
-          {"x_weight", WeightFromAtomicFraction(table.x_atomic[i], model->system())}};
-      for (size_t c = 0; c < table.columns.size(); ++c)
-        row[table.columns[c]] = ToJson(table.rows[i][c]);
-      rows.push_back(row);
-    }
-    nlohmann::json notes = table.notes;
-    notes.push_back(ElementsLine(model->system()));
-    const nlohmann::json out = {{"system", model->system().Name()},
-                                {"method", model->method()},
-                                {"uncertainty", with_sigma ? "one sigma" : "none"},
-                                {"notes", notes},
-                                {"rows", rows}};
-    PrintOutput(JsonText(out, 1) + "\n");
-    return;
-  }
   std::ostringstream text;
   text << "# " << model->method() << " model of " << model->system().Name()
        << "; x = atomic fraction of " << model->system().a.symbol << "\n";
   for (const std::string& note : table.notes) text << "# " << note << "\n";
-  text << "# " << ElementsLine(model->system()) << "\n";
+  text << "# " << FreeElectronDensityNote(model->system()) << "\n";
   std::vector<std::string> header = {"x"};
   header.insert(header.end(), table.columns.begin(), table.columns.end());
   std::vector<std::vector<std::string>> rows;

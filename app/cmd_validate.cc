@@ -13,6 +13,7 @@
 #include "alloycolor/core/io.h"
 #include "alloycolor/core/json.h"
 #include "alloycolor/core/parallel.h"
+#include "alloycolor/fit/lineage.h"
 #include "alloycolor/fit/methods.h"
 #include "alloycolor/model/registry.h"
 #include "common.h"
@@ -151,7 +152,7 @@ std::string SummaryText(const nlohmann::json& report) {
   const auto& recovery = report["composition_recovery"];
   if (!recovery.empty()) {
     for (const bool sigma_row : {false, true}) {
-      std::printf("%-18s", sigma_row ? "recovered_in_2sig" : "recovery_at%");
+      Appendf(&text, "%-18s", sigma_row ? "recovered_in_2sig" : "recovery_at%");
       for (const auto& m : methods) {
         const std::string name = m.get<std::string>();
         char buf[48];
@@ -164,9 +165,9 @@ std::string SummaryText(const nlohmann::json& report) {
           std::snprintf(buf, sizeof buf, "%.3g",
                         recovery[name]["mean_abs_error_at_percent"].get<double>());
         }
-        std::printf(" %16s", buf);
+        Appendf(&text, " %16s", buf);
       }
-      std::printf("\n");
+      Appendf(&text, "\n");
     }
   }
   if (!report["delta_e00_available"].get<bool>()) {
@@ -205,8 +206,12 @@ void Run(const ValidateOptions& o) {
     };
   }
   if (o.verbose) options.details = progress;
-  const ValidationReport report =
+  ValidationReport report =
       validate::ComputeValidation(dataset, splits, colorimeter, options, progress);
+  // The opening verdict: the whole data set as a fit of it would see it.
+  Report(progress, "validate: the whole data set (auto, its samples checked, where to measure)");
+  report.whole =
+      validate::DescribeWholeDataSet(dataset, d65, fit::WholeDataSetFitter(d65, &threads));
   // Both files are rendered before either is written, and written as a set.
   const nlohmann::json json = ValidationJson(report);
   const std::string json_text = JsonText(json, 1) + "\n";

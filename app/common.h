@@ -160,6 +160,7 @@ void RegisterSweep(CLI::App& app);
 void RegisterExplore(CLI::App& app);
 void RegisterMatch(CLI::App& app);
 void RegisterTolerance(CLI::App& app);
+void RegisterSuggest(CLI::App& app);
 
 }  // namespace alloycolor::app
 

@@ -129,6 +129,7 @@ int main(int argc, char** argv) {
   alloycolor::app::RegisterExplore(app);
   alloycolor::app::RegisterMatch(app);
   alloycolor::app::RegisterTolerance(app);
+  alloycolor::app::RegisterSuggest(app);
   CheckOutputFoldersFirst(app);
   try {
     app.parse(argc, argv);

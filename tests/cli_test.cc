@@ -293,12 +293,14 @@ TEST_F(BadInput, ModelFilesAndRefit) {
   r = RunProgram(
       {"fit", "--data", "Au-Ag", "--refit", model, "--out", dir_ + "/new.json", "--quiet"});
   ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_NE(r.err.find("added sample Rioux-Au30Ag70.yml"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("refit: added Rioux-Au30Ag70.yml (x = 0.3): the old"), std::string::npos)
+      << r.err;
   EXPECT_NE(r.err.find("refit: final cost"), std::string::npos) << r.err;
   r = RunProgram({"fit", "--data", "Au-Ag", "--from", model, "--out", dir_ + "/new2.json"});
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.err.find("--from is now --refit"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("added sample Rioux-Au30Ag70.yml"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("refit: added Rioux-Au30Ag70.yml (x = 0.3): the old"), std::string::npos)
+      << r.err;
   std::ifstream again(model);
   EXPECT_EQ(std::string((std::istreambuf_iterator<char>(again)), std::istreambuf_iterator<char>()),
             text);

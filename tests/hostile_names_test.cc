@@ -128,12 +128,12 @@ void ExpectOnlyOwnElements(const std::string& html, int scripts, const std::stri
   // The tags the explorer page and the report write themselves, and tbody, which a
   // browser adds to a table.
   static const std::set<std::string> kOwn = {
-      "b",      "body",    "br",    "button",  "canvas", "caption", "circle",   "clippath",
-      "code",   "dd",      "defs",  "details", "div",    "dl",      "dt",       "g",
-      "h1",     "h2",      "h3",    "h4",      "head",   "header",  "html",     "i",
-      "input",  "label",   "li",    "line",    "meta",   "p",       "polyline", "rect",
-      "script", "section", "small", "span",    "style",  "sub",     "summary",  "svg",
-      "table",  "td",      "text",  "th",      "title",  "tr",      "ul",       "tbody"};
+      "b",     "body",  "br",      "button",  "canvas",   "caption", "circle", "clippath", "code",
+      "dd",    "defs",  "details", "div",     "dl",       "dt",      "g",      "h1",       "h2",
+      "h3",    "h4",    "head",    "header",  "html",     "i",       "input",  "label",    "li",
+      "line",  "meta",  "p",       "polygon", "polyline", "rect",    "script", "section",  "small",
+      "span",  "style", "sub",     "summary", "svg",      "table",   "td",     "text",     "th",
+      "title", "tr",    "ul",      "tbody"};
   const Elements e = ElementsOf(html);
   for (const std::string& tag : std::set<std::string>(e.tags.begin(), e.tags.end())) {
     EXPECT_TRUE(kOwn.count(tag)) << what << ": <" << tag << ">";

@@ -103,7 +103,9 @@ TEST(PredictionError, BadValuesAreRefusedByName) {
 }
 
 TEST(PredictionError, FitsOfThreeCompositionsOrMoreCarryItAndTheFileKeepsIt) {
-  const Dataset all = LoadDataset(DataDir() + "/Au-Ag");
+  Dataset all = LoadDataset(DataDir() + "/Au-Ag");
+  // Stated exact (precision 0): the floor is then what the printed digits resolve.
+  all.precision_stated = true;
   const color::Colorimeter cm = color::Colorimeter::Load(DataDir(), "D65", 2);
   fit::FitSettings settings;
   settings.colorimeter = &cm;
@@ -167,8 +169,9 @@ TEST(PredictionError, AutoAppliesAndRecordsItsChoiceFactor) {
 // The stated precision by hand: n + i k = sqrt(-5 + 2i) (1 + x / 100) at every wavelength,
 // n and k each off by the manifest's standard deviations (0.01, 0.02), far above what the
 // printed digits resolve: precision = 2 sqrt(0.01^2 + 0.02^2) / |n + i k|, the median over
-// the samples that at x = 0.5. Not stated: the digits' alone, far smaller. At a training
-// composition the colour sigma is then the precision's alone, and grows with it.
+// the samples that at x = 0.5. Not stated: a typical measurement's, 0.01 in n and in k.
+// Stated as 0: the digits' alone, far smaller. At a training composition the colour sigma
+// is then the precision's alone, and grows with it.
 TEST(PredictionError, StatedPrecisionByHand) {
   const color::Colorimeter cm = color::Colorimeter::Load(DataDir(), "D65", 2);
   fit::FitSettings settings;
@@ -176,14 +179,19 @@ TEST(PredictionError, StatedPrecisionByHand) {
   const std::string dir = testing::WriteSyntheticDataset(
       {0.0, 0.25, 0.5, 0.75, 1.0},
       [](double x, double) { return std::complex<double>(-5.0, 2.0) * std::pow(1 + x / 100, 2); });
-  const auto digits = fit::BuildModel("eps-linear", LoadDataset(dir), settings);
+  const double size = std::sqrt(std::abs(std::complex(-5.0, 2.0))) * 1.005;  // |n + i k|
+  const auto typical = fit::BuildModel("eps-linear", LoadDataset(dir), settings);
+  EXPECT_NEAR(typical->prediction_error().precision, 2 * std::hypot(0.01, 0.01) / size,
+              1e-6 / size);
   nlohmann::json manifest = nlohmann::json::parse(ReadFileText(dir + "/dataset.json"));
   manifest["precision"] = {{"n", 0.01}, {"k", 0.02}};
   testing::WriteText(dir + "/dataset.json", manifest.dump());
   const auto stated = fit::BuildModel("eps-linear", LoadDataset(dir), settings);
-  const double expected =
-      2 * std::hypot(0.01, 0.02) / (std::sqrt(std::abs(std::complex(-5.0, 2.0))) * 1.005);
+  const double expected = 2 * std::hypot(0.01, 0.02) / size;
   EXPECT_NEAR(stated->prediction_error().precision, expected, 1e-6 * expected);
+  manifest["precision"] = {{"n", 0}, {"k", 0}};
+  testing::WriteText(dir + "/dataset.json", manifest.dump());
+  const auto digits = fit::BuildModel("eps-linear", LoadDataset(dir), settings);
   EXPECT_LT(digits->prediction_error().precision, 0.01 * expected);
   const double sigma_digits = color::DeltaE00Sigma(cm, *digits, 0.5, 0.0);
   const double sigma_stated = color::DeltaE00Sigma(cm, *stated, 0.5, 0.0);

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <system_error>
@@ -223,6 +224,7 @@ void ReadPrecision(const std::string& manifest, const Json& root, Dataset* datas
          " is not an object such as {\"n\": 0.002, \"k\": 0.002}");
   }
   WarnUnknownKeys(manifest, "precision: ", precision, {"n", "k"}, &dataset->warnings);
+  dataset->precision_stated = true;
   for (const auto& [key, target] :
        {std::pair{"n", &dataset->precision_n}, std::pair{"k", &dataset->precision_k}}) {
     if (!precision.contains(key)) continue;
@@ -242,8 +244,8 @@ Sample ReadSampleEntry(const std::string& manifest, const fs::path& manifest_pat
                        std::vector<std::string>* warnings) {
   const std::string where = "samples[" + std::to_string(i) + "]";
   if (!entry.is_object()) Fail(manifest + ": " + where + ": not an object");
-  WarnUnknownKeys(manifest, where + ": ", entry, {"x", "file", "n_file", "k_file", "columns"},
-                  warnings);
+  WarnUnknownKeys(manifest, where + ": ", entry,
+                  {"x", "file", "n_file", "k_file", "columns", "exclude"}, warnings);
   Sample sample;
   std::string file;
   ReadSampleFiles(manifest, where, entry, manifest_path.parent_path(), &sample, &file);
@@ -257,6 +259,16 @@ Sample ReadSampleEntry(const std::string& manifest, const fs::path& manifest_pat
   sample.x_given = entry.at("x").get<double>();
   if (!(sample.x_given >= 0 && sample.x_given <= 1)) {
     Fail(named + ": x = " + FormatNumber(sample.x_given) + " lies outside [0, 1]");
+  }
+  if (entry.contains("exclude")) {
+    const Json& reason = entry.at("exclude");
+    const std::string text = reason.is_string() ? reason.get<std::string>() : std::string();
+    if (Trim(text).empty()) {
+      Fail(named + ": exclude: " + Quote60(reason.dump()) +
+           " is not a reason; write why the sample is set aside, as text "
+           "(\"exclude\": \"oxidised film\")");
+    }
+    sample.excluded = std::string(Trim(text));
   }
   sample.x_atomic = dataset.composition == kWeight
                         ? AtomicFromWeightFraction(sample.x_given, dataset.system)
@@ -368,6 +380,12 @@ Dataset Load(const std::string& dir_or_manifest) {
   ReadSampleData(&dataset.samples, &dataset.warnings);
   // Nor can one measurement copied under two names (or columns) be two compositions.
   CheckDistinctMeasurements(manifest, dataset.samples);
+  // The samples set aside leave the fit but stay known, in the same order.
+  const auto set_aside = std::stable_partition(dataset.samples.begin(), dataset.samples.end(),
+                                               [](const Sample& s) { return s.excluded.empty(); });
+  dataset.excluded.assign(std::make_move_iterator(set_aside),
+                          std::make_move_iterator(dataset.samples.end()));
+  dataset.samples.erase(set_aside, dataset.samples.end());
   return dataset;
 }
 

@@ -43,15 +43,18 @@ double DecimalStep(const std::vector<double>& values) {
 }
 
 // The relative eps error of one measurement: n and k each off by the precision the
-// manifest states (Dataset::precision_n, _k) or, where larger, by what the data's digits
-// can resolve (up to half a step: a uniform error, standard deviation step / sqrt(12)), so
+// manifest states (Dataset::precision_n, _k), or where it states none by a typical
+// measurement's (kTypicalPrecisionNk), or where larger by what the data's digits can
+// resolve (up to half a step: a uniform error, standard deviation step / sqrt(12)), so
 // |d eps| / |eps| = 2 sqrt(sd_n^2 + sd_k^2) / |n + i k|; the median over the samples'
 // wavelengths inside [lo, hi].
 double MeasurementPrecision(const Dataset& dataset, double lo, double hi) {
   std::vector<double> relative;
+  const double stated_n = dataset.precision_stated ? dataset.precision_n : kTypicalPrecisionNk;
+  const double stated_k = dataset.precision_stated ? dataset.precision_k : kTypicalPrecisionNk;
   for (const Sample& s : dataset.samples) {
-    const double sd_n = std::max(dataset.precision_n, DecimalStep(s.nk.n) / std::sqrt(12.0));
-    const double sd_k = std::max(dataset.precision_k, DecimalStep(s.nk.k) / std::sqrt(12.0));
+    const double sd_n = std::max(stated_n, DecimalStep(s.nk.n) / std::sqrt(12.0));
+    const double sd_k = std::max(stated_k, DecimalStep(s.nk.k) / std::sqrt(12.0));
     for (size_t j = 0; j < s.nk.lambda_nm.size(); ++j) {
       if (s.nk.lambda_nm[j] < lo || s.nk.lambda_nm[j] > hi) continue;
       const double size = std::hypot(s.nk.n[j], s.nk.k[j]);
@@ -330,6 +333,7 @@ PredictionError FoldPredictionError(const MethodInfo& method, std::vector<Fold>&
         if (!std::isfinite(e)) continue;
         observed.push_back(e);
         predicted_sigma.push_back(sigma);
+        error.held_out.push_back({x, s->file, e, sigma});
       }
     }
     if (!observed.empty()) {
@@ -419,15 +423,9 @@ void EstimatePredictionError(const MethodInfo& method, std::vector<Fold>& fitted
   PredictionError error = FoldPredictionError(method, fitted, dataset, settings, *model);
   const double lo = model->lambda_min_nm(), hi = model->lambda_max_nm();
   AddMisfit(dataset, *model, MisfitGrid(lo, hi), &error);
-  if (!error.present() && error.misfit.empty() && error.scatter.empty()) return;
+  // No folds (two compositions): nothing was held out, so no error bar is claimed.
+  if (!error.present()) return;
   error.precision = MeasurementPrecision(dataset, lo, hi);
-  if (!error.present()) {
-    // No folds (two compositions): the misfit and scatter alone.
-    error.lambda_nm = error.misfit_lambda_nm;
-    error.scale.assign(error.lambda_nm.size(), 0.0);
-    error.compositions = DistinctCompositions(dataset);
-    if (error.compositions.size() < 2) return;
-  }
   model->set_prediction_error(std::move(error));
 }
 

@@ -352,7 +352,8 @@ def test_illuminants_and_observers_broadcast(au_ag):
 def test_stated_precision_sets_the_floor(au_ag, tmp_path):
     # The bundled Au-Ag samples at 0, 0.5, 1 with a stated precision of n and k: the data set
     # reports it, and the one-sigma at a training composition (where only the precision
-    # is left) grows from what the printed digits resolve to what the lab states.
+    # is left) grows from what the printed digits resolve (a lab stating its data exact) to
+    # what the lab states; stating none takes a typical measurement's, 0.01 in n and k.
     samples = [{"x": s["x_atomic"], "file": s["path"]} for s in au_ag.samples
                if round(s["x_atomic"], 6) in (0.0, 0.5, 1.0)]
     manifest = {"system": {"a": "Au", "b": "Ag"}, "composition": "atomic_fraction_a",
@@ -364,8 +365,12 @@ def test_stated_precision_sets_the_floor(au_ag, tmp_path):
     (tmp_path / "dataset.json").write_text(json.dumps(manifest))
     stated = ac.Dataset(tmp_path)
     assert stated.precision == {"n": 0.01, "k": 0.01}
-    sigma_digits = ac.fit(digits, "eps-linear").color(0.5, sigma=True)["sigma"]
+    sigma_typical = ac.fit(digits, "eps-linear").color(0.5, sigma=True)["sigma"]
     sigma_stated = ac.fit(stated, "eps-linear").color(0.5, sigma=True)["sigma"]
+    assert sigma_stated == pytest.approx(sigma_typical, rel=1e-9)
+    manifest["precision"] = {"n": 0, "k": 0}
+    (tmp_path / "dataset.json").write_text(json.dumps(manifest))
+    sigma_digits = ac.fit(ac.Dataset(tmp_path), "eps-linear").color(0.5, sigma=True)["sigma"]
     assert sigma_stated > 10 * sigma_digits
     manifest["precision"] = {"n": -1}
     (tmp_path / "dataset.json").write_text(json.dumps(manifest))

@@ -124,11 +124,14 @@ nlohmann::json SigmaHonestyJson(const ValidationReport& report) {
     for (size_t a = 0; a < report.angles_deg.size(); ++a) {
       const validate::SigmaCoverage s = validate::Coverage(report, method, static_cast<int>(a));
       if (s.count == 0) continue;
+      const HonestyVerdict verdict = JudgeHonesty(s);
       honesty[method][Num(report.angles_deg[a])] = {
           {"count", s.count},
           {"within_1_sigma", s.within_1},
           {"within_2_sigma", s.within_2},
-          {"median_observed_over_sigma", OrNull(s.median_ratio)}};
+          {"median_observed_over_sigma", OrNull(s.median_ratio)},
+          {"verdict", verdict.kind},
+          {"verdict_text", verdict.text}};
     }
   }
   return honesty;
@@ -185,6 +188,7 @@ nlohmann::json ValidationJson(const ValidationReport& report) {
   doc["sigma_honesty"] = SigmaHonestyJson(report);
   doc["composition_recovery"] = CompositionRecoveryJson(report);
   doc["dataset_warnings"] = report.dataset_warnings;
+  if (report.whole.present()) doc["whole_data_set"] = WholeJson(report.whole);
   return doc;
 }
 

@@ -8,6 +8,7 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,20 @@ nlohmann::json HexByAngle(const std::vector<double>& angles,
 nlohmann::json LabByAngle(const std::vector<double>& angles, const std::vector<color::Lab>& labs);
 // "the colorimeter's grid 360-830 nm ..." for the report.
 std::string ColourRangeText(const ValidationReport& report);
+
+// The error bars' verdict from their own counts (report_overview.cc): "too small" where
+// honest bars (68 % within one sigma, 95 % within two) would leave so few within two sigma
+// with under 5 % probability, "too large" where they would put so many within one sigma
+// with under 5 % probability, else "about right"; `text` says it with the counts.
+struct HonestyVerdict {
+  std::string kind = "none";
+  std::string text;
+};
+HonestyVerdict JudgeHonesty(const SigmaCoverage& coverage);
+
+// The report's opening (report_overview.cc): the data set as a whole, before the tables.
+void WriteOverview(const ValidationReport& report, std::ostringstream& html);
+nlohmann::json WholeJson(const WholeDataSet& whole);
 
 }  // namespace alloycolor::validate
 

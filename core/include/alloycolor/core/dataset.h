@@ -9,7 +9,10 @@
 //  - per sample, "columns": ["n6", "k6"] (header names or 1-based column numbers) chooses
 //    the sample's columns in a delimited file holding several (io.h);
 //  - per sample, "n_file" and "k_file" instead of "file": refractiveindex.info files
-//    holding `tabulated n` and `tabulated k` alone, paired (ReadNkPair).
+//    holding `tabulated n` and `tabulated k` alone, paired (ReadNkPair);
+//  - per sample, "exclude": "reason" keeps a file listed but set aside: it is read and
+//    checked like the others, kept in Dataset::excluded with its reason, and no model is
+//    fitted to it (a validation report scores it as a held-out sample).
 // Unknown keys at the top level and in samples are warnings; in "elements", errors.
 // Replicates, distinct files at the same x (two films of one alloy), are welcome: each stays
 // a sample of its own. The same file (or the same n, k under two names) twice is refused,
@@ -36,6 +39,7 @@ struct Sample {
   NkColumns columns;     // the manifest's "columns"; empty when not given
   std::string checksum;  // Fnv1a64Hex of the file's bytes
   NkSpectrum nk;
+  std::string excluded;  // the manifest's "exclude": why it is set aside; empty when used
 };
 
 struct Dataset {
@@ -46,12 +50,23 @@ struct Dataset {
   // Sorted by x_atomic (stable: the replicates of a composition adjacent, in the
   // manifest's order).
   std::vector<Sample> samples;
+  // The samples the manifest sets aside ("exclude": "reason"), sorted the same way; never
+  // fitted, but scored as held out by a validation report.
+  std::vector<Sample> excluded;
   std::vector<std::string> warnings;
   // The manifest's "precision": one standard deviation of a measured n and of a measured k
-  // as the user's instrument states it (absolute); 0 where not stated, and the printed
-  // digits then set the error bars' floor alone.
+  // as the user's instrument states it (absolute; a value not given is 0). Where the
+  // manifest states none, the error bars' floor takes kTypicalPrecisionNk instead; either
+  // way, the printed digits' resolution where it is larger.
   double precision_n = 0, precision_k = 0;
+  bool precision_stated = false;
 };
+
+// One standard deviation of a measured n and k where the manifest states no precision:
+// what spectroscopic ellipsometry of metal films typically reproduces in the visible
+// (about 0.01 in n and in k between repeated measurements and careful fits), so that no
+// error bar claims more than a measurement can tell (docs/data.md).
+inline constexpr double kTypicalPrecisionNk = 0.01;
 
 // Accepts a folder holding dataset.json or the manifest file itself.
 Dataset LoadDataset(const std::string& dir_or_manifest);

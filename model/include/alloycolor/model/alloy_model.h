@@ -17,6 +17,7 @@
 
 #include <complex>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -110,6 +111,16 @@ struct PredictionError {
   std::vector<double> misfit_lambda_nm;  // increasing; empty: no misfit nor scatter
   std::vector<std::vector<std::complex<double>>> misfit, scatter;
   double precision = 0;
+  // The folds' held-out samples as the calibration saw them (kept in memory, not in the
+  // model file): each one's CIEDE2000 error and its one-sigma before calibration, from
+  // the other folds' scale (fit/suspects.h weighs each against the others).
+  struct HeldOut {
+    double x_atomic;
+    std::string file;
+    double delta_e00;
+    double sigma;
+  };
+  std::vector<HeldOut> held_out;
   bool present() const { return !lambda_nm.empty(); }
   // B(x) above.
   double Bump(double x_atomic) const;
@@ -130,6 +141,58 @@ struct InSampleError {
   double reflectance_rms = 0;
 };
 
+// What a model keeps of each training sample (not its data, unless the method needs it).
+struct TrainingSample {
+  double x_atomic;
+  double x_given;
+  std::string file;
+  std::string checksum;
+};
+
+// A sample of the data set that a fit questions (fit/suspects.h: out of line with the
+// rest of the series) or that the manifest sets aside ("exclude"), as the model file keeps
+// it: fit.suspect_samples and excluded_samples (docs/model-format.md).
+struct SampleNote {
+  double x_atomic = 0, x_given = 0;
+  std::string file;
+  std::string check;   // suspects: "not metallic" or "held out"; set aside: "excluded"
+  std::string reason;  // one line: why it is suspect, or the manifest's reason
+  // The check's figure and what it is ("held-out dE00 / one-sigma", "fraction metallic");
+  // NaN where none.
+  std::string figure_name;
+  double figure = std::numeric_limits<double>::quiet_NaN();
+  // The model built without the sample against it (color/sample_error.h) and the model's
+  // one-sigma there; NaN where not computed or not available.
+  double delta_e00 = std::numeric_limits<double>::quiet_NaN();
+  double sigma_de00 = std::numeric_limits<double>::quiet_NaN();
+  double reflectance_rms = std::numeric_limits<double>::quiet_NaN();
+};
+
+// One fit in a model's lineage (the model file's "history", oldest first): `fit` adds one
+// entry, a refit (`fit --refit OLD`) adds its own to OLD's. For each sample added since the
+// previous model, that model's prediction there: its error (delta_e00 at normal incidence,
+// D65, 2 deg; reflectance_rms) and its one-sigma, and the verdict (SigmaVerdict).
+struct AddedSample {
+  double x_atomic = 0, x_given = 0;
+  std::string file, checksum;
+  double delta_e00 = std::numeric_limits<double>::quiet_NaN();
+  double sigma_de00 = std::numeric_limits<double>::quiet_NaN();
+  double reflectance_rms = std::numeric_limits<double>::quiet_NaN();
+  std::string verdict;  // empty for a first fit (no earlier model predicted it)
+};
+struct HistoryEntry {
+  std::string date;  // ISO 8601, UTC ("2026-12-06T10:00:00Z"); empty where unknown
+  std::string method;
+  std::string previous_method;  // a refit's: the method of the model it refitted
+  int samples = 0;              // the samples it was fitted to
+  std::vector<AddedSample> added;
+  std::vector<TrainingSample> removed, changed;  // changed: the same file, another checksum
+};
+
+// The verdict on an error against a one-sigma: "within one sigma", "within two sigma",
+// "beyond two sigma", or "no error bar" where sigma is not a positive number.
+std::string SigmaVerdict(double error, double sigma);
+
 // Uncertainty is propagated by draws of eps: this many, from this seed, wherever the
 // program reports a sigma, so reports repeat exactly.
 inline constexpr int kUncertaintyDraws = 64;
@@ -148,14 +211,6 @@ struct ParameterTable {
   std::vector<std::string> columns;  // besides x
   std::vector<double> x_atomic;
   std::vector<std::vector<Quantity>> rows;  // rows[i][column]
-};
-
-// What a model keeps of each training sample (not its data, unless the method needs it).
-struct TrainingSample {
-  double x_atomic;
-  double x_given;
-  std::string file;
-  std::string checksum;
 };
 
 // A model bound to one wavelength grid: eps at any composition on that grid, with all that
@@ -206,15 +261,25 @@ class AlloyModel {
   // interpolates Drude parameters itself (the paper's) gives its own.
   virtual bool DrudeAt(double x_atomic, double lambda_nm, DrudePoint* out) const;
 
-  // Whether PermittivityDraws gives anything: draws of eps from the cross-validated
-  // prediction error (or, for a model that has one and no prediction error, from its
-  // parameters' covariance), for propagating uncertainty to reflectance and colour.
-  virtual bool HasUncertainty() const { return prediction_error_.present(); }
+  // Whether the model gives an error bar: draws of eps (CheckedDraws) from the
+  // cross-validated prediction error (or, for a model that has one and no prediction
+  // error, from its parameters' covariance: HasUncertaintyTerms), for propagating
+  // uncertainty to reflectance and colour, and only for a model fitted to three
+  // compositions or more: with two, nothing could be held out to measure its error, and
+  // no face claims one (NoErrorBarReason says so instead).
+  bool HasUncertainty() const;
+  virtual bool HasUncertaintyTerms() const { return prediction_error_.present(); }
+  // Why there is no error bar, one phrase for every face ("no error bar: 2 compositions
+  // ..."); empty when HasUncertainty().
+  std::string NoErrorBarReason() const;
+  // The number of distinct training compositions.
+  int TrainingCompositions() const;
   virtual std::vector<std::vector<std::complex<double>>> PermittivityDraws(
       double x_atomic, const std::vector<double>& lambda_nm, int count = kUncertaintyDraws,
       std::uint32_t seed = kUncertaintySeed) const;
-  // PermittivityDraws with every value checked: throws Error naming source() and the
-  // uncertainty when a draw is not usable (an uncertainty too wide to propagate).
+  // PermittivityDraws with every value checked (none without HasUncertainty()): throws
+  // Error naming source() and the uncertainty when a draw is not usable (an uncertainty
+  // too wide to propagate).
   std::vector<std::vector<std::complex<double>>> CheckedDraws(
       double x_atomic, const std::vector<double>& lambda_nm, int count = kUncertaintyDraws,
       std::uint32_t seed = kUncertaintySeed) const;
@@ -249,6 +314,25 @@ class AlloyModel {
   void set_fit_summary(FitSummary summary) { fit_summary_ = std::move(summary); }
   const std::vector<InSampleError>& in_sample() const { return in_sample_; }
   void set_in_sample(std::vector<InSampleError> rows) { in_sample_ = std::move(rows); }
+  // What the fit found of the data set's samples (fit/suspects.h), and the samples the
+  // manifest set aside, each scored as held out.
+  const std::vector<SampleNote>& suspect_samples() const { return suspects_; }
+  // Whether the samples were checked (a model built for a fold or a split is not).
+  bool samples_checked() const { return samples_checked_; }
+  void set_suspect_samples(std::vector<SampleNote> notes) {
+    suspects_ = std::move(notes);
+    samples_checked_ = true;
+  }
+  const std::vector<SampleNote>& excluded_samples() const { return excluded_; }
+  void set_excluded_samples(std::vector<SampleNote> notes) { excluded_ = std::move(notes); }
+  // The model's lineage, oldest first (HistoryEntry); empty for a model built in memory
+  // and not yet recorded.
+  const std::vector<HistoryEntry>& history() const { return history_; }
+  void set_history(std::vector<HistoryEntry> history) { history_ = std::move(history); }
+  // The design's parameters over the composition range (ParameterCurvesJson), kept in the
+  // model file as parameters.curves; null where not computed.
+  const nlohmann::json& parameter_curves() const { return parameter_curves_; }
+  void set_parameter_curves(nlohmann::json curves) { parameter_curves_ = std::move(curves); }
   const PredictionError& prediction_error() const { return prediction_error_; }
   // Throws Error naming the field when the values are not usable.
   void set_prediction_error(PredictionError error);
@@ -285,8 +369,23 @@ class AlloyModel {
   FitSummary fit_summary_;
   PredictionError prediction_error_;
   std::vector<InSampleError> in_sample_;
+  std::vector<SampleNote> suspects_, excluded_;
+  bool samples_checked_ = false;
+  std::vector<HistoryEntry> history_;
+  nlohmann::json parameter_curves_;
   std::string source_;
 };
+
+// The model's parameters against composition (Parameters) as the model file and
+// `alloycolor params --format json` write them: {"system", "method", "uncertainty",
+// "notes", "rows": [{"x", "x_weight", column: {"value", "sigma"} or null, ...}]}, at
+// `steps` compositions evenly over [from, to].
+nlohmann::json ParameterCurvesJson(const AlloyModel& model, double from, double to, int steps);
+// The same over the model's composition range, 11 compositions (`params`' default).
+nlohmann::json ParameterCurvesJson(const AlloyModel& model);
+// The line on N_e that every parameter table carries (the elements' valence, density and
+// atomic mass).
+std::string FreeElectronDensityNote(const AlloySystem& system);
 
 // The end of the message for a model whose uncertainty draws cannot be used.
 extern const char* const kUncertaintyTooWide;

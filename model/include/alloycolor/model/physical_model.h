@@ -288,8 +288,8 @@ class PhysicalModel : public AlloyModel {
       double x_atomic, const std::vector<double>& lambda_nm) const override;
   // The cross-validated prediction error where the fit estimated one (AlloyModel), else
   // draws of the coefficients from their covariance.
-  bool HasUncertainty() const override {
-    return AlloyModel::HasUncertainty() || !covariance_.empty();
+  bool HasUncertaintyTerms() const override {
+    return AlloyModel::HasUncertaintyTerms() || !covariance_.empty();
   }
   std::vector<std::vector<std::complex<double>>> PermittivityDraws(
       double x_atomic, const std::vector<double>& lambda_nm, int count = kUncertaintyDraws,

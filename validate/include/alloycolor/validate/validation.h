@@ -37,6 +37,7 @@
 #include <vector>
 
 #include "alloycolor/color/colorimetry.h"
+#include "alloycolor/color/suggest.h"
 #include "alloycolor/core/dataset.h"
 #include "alloycolor/core/parallel.h"
 #include "alloycolor/core/progress.h"
@@ -118,6 +119,27 @@ struct SplitResult {
   std::vector<DrudeCurve> drude;
 };
 
+// What the report says first, of the data set as a whole (DescribeWholeDataSet): the model
+// a user would fit to every sample, its checks of the samples (fit/suspects.h), the samples
+// the manifest sets aside as it predicts them, its one-sigma across composition, and
+// where to measure next (color/suggest.h).
+struct WholeDataSet {
+  std::string method;        // empty: not described
+  std::string choice;        // why auto chose it, where it did
+  std::string error;         // why the model could not be built
+  std::string no_error_bar;  // AlloyModel::NoErrorBarReason, empty where it has error bars
+  bool samples_checked = false;
+  std::vector<SampleNote> suspects, excluded;
+  std::vector<double> sample_x;  // its training compositions
+  // The scan across composition (normal incidence): x, sRGB and one-sigma CIEDE2000 (empty
+  // without error bars).
+  std::vector<double> x, sigma;
+  std::vector<std::array<std::uint8_t, 3>> srgb8;
+  std::vector<color::Suggestion> suggestions;
+  std::string suggest_rule;
+  bool present() const { return !method.empty() || !error.empty(); }
+};
+
 struct ValidationReport {
   std::string data;  // the manifest
   std::string name;  // the data set's name
@@ -133,7 +155,16 @@ struct ValidationReport {
   std::vector<std::string> dataset_warnings;
   std::vector<SplitResult> splits;
   std::vector<HoldoutResult> holdouts;
+  WholeDataSet whole;  // not described unless the face asks (DescribeWholeDataSet)
 };
+
+// Builds the model of the whole data set with `fit_whole` (the face's: fit::FitDataSet with
+// auto, so that its samples are checked) and describes it (WholeDataSet), with `count`
+// suggestions of where to measure next. A model that cannot be built is described by its
+// error. Colour at normal incidence under `colorimeter`.
+WholeDataSet DescribeWholeDataSet(
+    const Dataset& dataset, const color::Colorimeter& colorimeter,
+    const std::function<std::unique_ptr<AlloyModel>(const Dataset&)>& fit_whole, int count = 3);
 
 // One split: the held-out samples, as indices into dataset.samples.
 using SampleSplit = std::vector<size_t>;

@@ -35,9 +35,7 @@ void Run(const ChartOptions& o) {
   if (o.steps < 2 || o.steps > 1000) {
     throw Error("--steps: " + std::to_string(o.steps) + " is not between 2 and 1000");
   }
-  if (!(o.angle_deg >= 0.0 && o.angle_deg <= 90.0)) {
-    throw Error("--angle: " + std::to_string(o.angle_deg) + " lies outside 0-90 degrees");
-  }
+  CheckAngleDeg("--angle", o.angle_deg);
   if (!o.labels.empty() && o.labels != "atomic" && o.labels != "weight") {
     throw Error("--labels: '" + o.labels + "' is not atomic or weight");
   }

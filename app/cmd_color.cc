@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
-#include <sstream>
 
 #include "alloycolor/color/material_color.h"
 #include "alloycolor/core/error.h"
@@ -79,11 +78,7 @@ void PrintRow(std::string* text, const std::string& label, const color::ColorRes
 
 void Run(const ColorOptions& o) {
   const color::Colorimeter colorimeter = LoadColorimeter(o.illuminant, o.observer);
-  if (!(o.angle_deg >= 0.0 && o.angle_deg <= 90.0)) {
-    std::ostringstream msg;
-    msg << "--angle: " << o.angle_deg << " lies outside 0-90 degrees";
-    throw Error(msg.str());
-  }
+  CheckAngleDeg("--angle", o.angle_deg);
   nlohmann::json common = {
       {"illuminant", colorimeter.illuminant()},
       {"observer", o.observer},

@@ -102,9 +102,7 @@ void Run(const MatchCommandOptions& o) {
     throw Error("give exactly one target: --lab, --xyz, --hex, --reflectance or --nk");
   }
   if (!o.columns.empty() && o.nk.empty()) throw Error("--columns applies to --nk FILE only");
-  if (!(o.angle_deg >= 0.0 && o.angle_deg <= 90.0)) {
-    throw Error("--angle: " + FormatNumber(o.angle_deg) + " lies outside 0-90 degrees");
-  }
+  CheckAngleDeg("--angle", o.angle_deg);
   const color::Colorimeter colorimeter = LoadColorimeter(o.illuminant, o.observer);
   // Read the target before the (possibly slow) model, so a bad target fails at once.
   color::Lab target{};

@@ -28,8 +28,6 @@
 namespace alloycolor::app {
 namespace {
 
-// Sweeps at least this long interpolate a table of XYZ (unless --exact).
-constexpr long long kTableMinSteps = 1000;
 constexpr long long kMaxSteps = 1000000000;
 
 // The most a command writes without --force: 1 GB.
@@ -145,9 +143,7 @@ void Run(const SweepOptions& o) {
     throw Error("--steps: " + std::to_string(o.steps) + " is not between 1 and " +
                 std::to_string(kMaxSteps));
   }
-  if (!(o.angle_deg >= 0.0 && o.angle_deg <= 90.0)) {
-    throw Error("--angle: " + Describe(o.angle_deg) + " lies outside 0-90 degrees");
-  }
+  CheckAngleDeg("--angle", o.angle_deg);
   // The size before the work: refused past the ceiling unless --force, and only where
   // there is room for it.
   const double row_bytes = o.format == "json" ? kJsonRowBytes : kCsvRowBytes;
@@ -183,9 +179,8 @@ void Run(const SweepOptions& o) {
     throw Error(source + ": " + e.what());
   }
   color::ColorSweep& sweep = *made;
-  const bool table = !o.exact && o.steps >= kTableMinSteps && from != to &&
-                     sweep.BuildTable(from, to, color::kSweepTableTolerance,
-                                      static_cast<int>(std::min<long long>(o.steps, 1 << 30)));
+  // Sweeps of 1000 steps or more interpolate a table of XYZ (unless --exact).
+  const bool table = sweep.BuildTableFor(static_cast<std::size_t>(o.steps), from, to, o.exact);
   const color::XYZ white = colorimeter.White();
   const bool json = o.format == "json";
 

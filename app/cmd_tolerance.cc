@@ -53,11 +53,7 @@ void Run(const ToleranceCommandOptions& o) {
     throw Error("--x: give one composition, not the list " + Quote(o.x_text));
   }
   const std::vector<double> angles = ParseNumberList(o.angles, "--angles");
-  for (const double a : angles) {
-    if (!(a >= 0.0 && a <= 90.0)) {
-      throw Error("--angles: " + FormatNumber(a) + " lies outside 0-90 degrees");
-    }
-  }
+  for (const double a : angles) CheckAngleDeg("--angles", a);
   std::vector<color::Colorimeter> colorimeters;
   for (const std::string& name : Names(o.illuminants)) {
     if (name.empty()) throw Error("--illuminants: an empty name in " + Quote(o.illuminants));

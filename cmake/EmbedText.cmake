@@ -1,4 +1,4 @@
-# Text files compiled into a program as C++ string constants.
+# Text files compiled into a target (a library or a program) as C++ string constants.
 #
 # alloycolor_embed_text(<target> <header> <namespace> <file>...) generates <header> in the
 # current binary folder, rebuilt when a file changes, declaring for each file one

@@ -1,4 +1,4 @@
-// Fuzzes the explorer page's parsers (app/explore/input.js) under Node, as scripts/fuzz.sh
+// Fuzzes the explorer page's parsers (export/explore/input.js) under Node, as scripts/fuzz.sh
 // runs the libFuzzer targets: inputs grown from a dictionary of the forms' pieces and from
 // the shared list (tests/reference/composition_inputs.json) by insertion, deletion,
 // repetition (runs of thousands of digits) and splicing, each checked for:
@@ -12,7 +12,7 @@
 "use strict";
 const fs = require("node:fs");
 const path = require("node:path");
-const I = require("../app/explore/input.js");
+const I = require("../export/explore/input.js");
 
 const seconds = Number(process.argv[2] || 60);
 const artifacts = process.argv[3] || "build-fuzz/artifacts";

@@ -1,7 +1,7 @@
 // One list of typed compositions (tests/reference/composition_inputs.json: forms, spacing,
 // case, signs, exponents, out-of-range values, slips, hostile text, 30,000-digit runs) read
 // by the library's parser (ParseComposition, the reference), by the explorer page's
-// (app/explore/input.js, under Node) and by the Blender add-on's conversions
+// (export/explore/input.js, under Node) and by the Blender add-on's conversions
 // (blender/alloycolor_material/compositions.py, under Python): every input the library
 // reads, the others read to the same atomic fraction; every input it refuses, they refuse.
 // Skipped without Node (Debian package nodejs) or Python 3.
@@ -104,7 +104,7 @@ TEST(CompositionParsers, ThePageReadsWhatTheLibraryReads) {
             "  const x = I.parseComposition(t, s); return Number.isNaN(x) ? null : x; }));\n"
             "process.stdout.write(JSON.stringify(out));\n");
   const std::string output = Capture(
-      "'" + node + "' '" + dir + "/page.js' '" + TestsDir() + "/../app/explore/input.js' '" +
+      "'" + node + "' '" + dir + "/page.js' '" + TestsDir() + "/../export/explore/input.js' '" +
       TestsDir() + "/reference/composition_inputs.json' '" + dir + "/systems.json'");
   const nlohmann::json page = nlohmann::json::parse(output, nullptr, false);
   ASSERT_TRUE(page.is_array()) << output.substr(0, 300);

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "alloycolor/core/error.h"
+#include "alloycolor/core/grid.h"
 #include "alloycolor/core/io.h"
 #include "alloycolor/core/units.h"
 
@@ -18,7 +19,6 @@ namespace {
 
 using Matrix3 = std::array<std::array<double, 3>, 3>;
 
-constexpr double kGridStepNm = 5.0;
 // Wavelengths in the tables are integers of nm; a row is "at" a grid point
 // within this.
 constexpr double kLambdaToleranceNm = 1e-6;

@@ -12,8 +12,6 @@
 namespace alloycolor::color {
 namespace {
 
-constexpr double kMetricStepNm = 5.0;
-
 std::vector<std::complex<double>> MeasuredIndex(const NkSpectrum& nk,
                                                 const std::vector<double>& grid) {
   std::vector<std::complex<double>> index(grid.size());
@@ -29,7 +27,7 @@ std::vector<double> MetricGrid(const AlloyModel& model, const NkSpectrum& measur
   const double hi = std::min(model.lambda_max_nm(), measured.lambda_max_nm());
   if (lo <= kVisibleMinNm + 1e-9 && hi >= kVisibleMaxNm - 1e-9) {
     *description = "380-780 nm, 5 nm step";
-    return UniformGrid(kVisibleMinNm, kVisibleMaxNm, kMetricStepNm);
+    return UniformGrid(kVisibleMinNm, kVisibleMaxNm, kGridStepNm);
   }
   std::vector<double> grid;
   for (double l : measured.lambda_nm) {

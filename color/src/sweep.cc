@@ -82,6 +82,12 @@ bool ColorSweep::BuildSegment(double x_lo, double x_hi, int intervals, double to
   return true;
 }
 
+bool ColorSweep::BuildTableFor(std::size_t count, double x_from, double x_to, bool exact) {
+  if (exact || count < kSweepTableMinCompositions || x_from == x_to) return false;
+  return BuildTable(x_from, x_to, kSweepTableTolerance,
+                    static_cast<int>(std::min<std::size_t>(count, kSweepMaxTableNodes)));
+}
+
 bool ColorSweep::BuildTable(double x_from, double x_to, double tolerance, int max_nodes) {
   max_nodes = std::min(max_nodes, kSweepMaxTableNodes);
   segments_.clear();

@@ -58,7 +58,7 @@ FitData PrepareData(const Dataset& dataset, const PhysicalFitOptions& options) {
   }
   data.infrared = from >= 1000.0 - 1e-9;
   double step = options.lambda_step_nm;
-  if (step == 0) step = data.infrared ? (to - from) / 200.0 : 5.0;
+  if (step == 0) step = data.infrared ? (to - from) / 200.0 : kGridStepNm;
   if (!(step > 0) || (to - from) / step > 1e5) {
     throw Error("physical fit: the wavelength step must be positive (and not tiny)");
   }

@@ -42,13 +42,19 @@ std::string TermsProblem(const std::string& text) {
   return "";
 }
 
-OptionSpec Number(const char* name, const char* flag, NumberRange range, std::string help) {
+OptionSpec Declare(const char* name, const char* flag, OptionKind kind, std::string help) {
   OptionSpec spec;
   spec.name = name;
   spec.flag = flag;
-  spec.kind = range.whole ? OptionKind::kWhole : OptionKind::kNumber;
-  spec.range = range;
+  spec.kind = kind;
   spec.help = std::move(help);
+  return spec;
+}
+
+OptionSpec Number(const char* name, const char* flag, NumberRange range, std::string help) {
+  OptionSpec spec =
+      Declare(name, flag, range.whole ? OptionKind::kWhole : OptionKind::kNumber, std::move(help));
+  spec.range = range;
   return spec;
 }
 
@@ -73,16 +79,13 @@ std::vector<OptionSpec> SmoothOptions() {
              "(default: chosen by leave-one-composition-out cross-validation, or with fewer "
              "than five compositions by the marginal likelihood)"),
   };
-  OptionSpec space;
-  space.name = "space";
-  space.flag = "--space";
-  space.kind = OptionKind::kChoice;
-  space.choices = {"eps", "log_eps"};
-  space.help =
+  OptionSpec space = Declare(
+      "space", "--space", OptionKind::kChoice,
       "what its curves across composition describe: eps (eps1, eps2) or log_eps (ln|eps| and "
       "arg eps: geometric interpolation, for samples whose |eps| differ by orders of magnitude "
       "or one of which is not metallic) (default: log_eps where its leave-one-out error is at "
-      "least a third below eps's, else eps)";
+      "least a third below eps's, else eps)");
+  space.choices = {"eps", "log_eps"};
   options.push_back(space);
   for (OptionSpec& grid : FitGridOptions()) options.push_back(std::move(grid));
   return options;
@@ -96,26 +99,20 @@ std::vector<OptionSpec> PhysicalOptions() {
              "10 % and one standard error better; lowered, with a warning, where the fit "
              "leaves physics)"),
   };
-  OptionSpec terms;
-  terms.name = "terms";
-  terms.flag = "--terms";
-  terms.kind = OptionKind::kText;
+  OptionSpec terms =
+      Declare("terms", "--terms", OptionKind::kText,
+              "interband terms: lorentz, cp (Etchegoin 2006 critical point), rioux-gap, rioux-edge "
+              "(Rioux 2014); none for the Drude term alone; auto: none for infrared data, else the "
+              "best of rioux-gap,rioux-edge / cp,cp / lorentz,lorentz,lorentz on the end samples");
   terms.check = &TermsProblem;
   terms.values = "auto, none, or up to " + std::to_string(kPhysicalMaxInterbandTerms) +
                  " of lorentz, cp, rioux-gap, rioux-edge, comma-separated";
   terms.default_value = OptionValue::Text("auto");
-  terms.help =
-      "interband terms: lorentz, cp (Etchegoin 2006 critical point), rioux-gap, rioux-edge "
-      "(Rioux 2014); none for the Drude term alone; auto: none for infrared data, else the "
-      "best of rioux-gap,rioux-edge / cp,cp / lorentz,lorentz,lorentz on the end samples";
   options.push_back(terms);
   for (OptionSpec& grid : FitGridOptions()) options.push_back(std::move(grid));
-  OptionSpec covariance;
-  covariance.name = "covariance";
-  covariance.flag = "--no-covariance";
-  covariance.kind = OptionKind::kFlag;
+  OptionSpec covariance = Declare("covariance", "--no-covariance", OptionKind::kFlag,
+                                  "the parameters' covariance, computed unless turned off");
   covariance.default_value = OptionValue::Flag(true);
-  covariance.help = "the parameters' covariance, computed unless turned off";
   options.push_back(covariance);
   return options;
 }

@@ -21,8 +21,6 @@ one-line messages, and an exception raised in one stops the work and propagates.
 
 from __future__ import annotations
 
-import inspect
-import numbers
 import os
 import pathlib
 from typing import Callable, Iterable, Optional, Sequence, Union
@@ -32,6 +30,10 @@ import numpy as np
 from . import _alloycolor as _core
 from . import _paths
 from ._alloycolor import Error, illuminants
+from ._args import (_callable, _columns_text, _export_args, _flag, _holds_bool, _observer, _path,
+                    _real, _real_array, _render_args, _text, _whole)
+from ._options import fit_doc as _fit_doc, fit_options as _fit_options
+from ._options import fit_signature as _fit_signature
 
 __version__ = _paths.VERSION
 __all__ = [
@@ -64,104 +66,6 @@ def methods() -> list:
     auto's order, -1: not a candidate), "validate_default" (validate runs it by default),
     "options" (the names of the options it takes: see :func:`fit`)}]."""
     return _core.methods()
-
-
-def _real(name: str, value) -> float:
-    """value as a float, when it is a real number (not a bool, complex or string)."""
-    if isinstance(value, (bool, np.bool_)):
-        raise Error("%s: %r is a boolean, not a number" % (name, value))
-    if isinstance(value, (complex, np.complexfloating)):
-        raise Error("%s: %r is complex; give a real number" % (name, value))
-    if not isinstance(value, numbers.Real):
-        raise Error("%s: %r is not a number" % (name, value))
-    return float(value)
-
-
-def _whole(name: str, value, lo: float, hi: float) -> int:
-    """value as an int, when it is a whole number in [lo, hi] (the library's check)."""
-    v = _real(name, value)
-    _core._check_number(name, v, lo, hi, True)
-    return int(v)
-
-
-def _observer(name: str, value) -> int:
-    v = _whole(name, value, 2, 10)
-    if v not in (2, 10):
-        raise Error("%s: %r is not 2 or 10" % (name, value))
-    return v
-
-
-def _path(name: str, value) -> str:
-    if not isinstance(value, (str, os.PathLike)):
-        raise Error("%s: %r is not a file path" % (name, value))
-    path = os.fspath(value)
-    if not isinstance(path, str):
-        raise Error("%s: give the path as a str, not %r" % (name, value))
-    return path
-
-
-def _callable(name: str, value):
-    if value is not None and not callable(value):
-        raise Error("%s: %r is not callable" % (name, value))
-    return value
-
-
-def _flag(name: str, value) -> bool:
-    if not isinstance(value, (bool, np.bool_)):
-        raise Error("%s: %r is not True or False" % (name, value))
-    return bool(value)
-
-
-def _text(name: str, value) -> str:
-    if not isinstance(value, str):
-        raise Error("%s: %r is not a string" % (name, value))
-    return value
-
-
-def _holds_bool(value) -> bool:
-    """True for a bool, or a (nested) list or tuple holding one (numpy turns [0.5, False]
-    into floats)."""
-    if isinstance(value, (list, tuple)):
-        return any(_holds_bool(v) for v in value)
-    return isinstance(value, (bool, np.bool_))
-
-
-def _real_array(name: str, value) -> np.ndarray:
-    arr = np.asarray(value)
-    if arr.dtype.kind == "b" or _holds_bool(value):
-        raise Error("%s: booleans are not numbers" % name)
-    if arr.dtype.kind == "c":
-        raise Error("%s: complex values; give real numbers" % name)
-    if arr.dtype.kind not in "iuf":
-        raise Error("%s: %r is not a number or an array of numbers" % (name, value))
-    return np.asarray(arr, dtype=float)
-
-
-def _columns_text(columns) -> str:
-    if columns is None:
-        return ""
-    if isinstance(columns, str):
-        return columns
-    parts = [str(c) for c in columns]
-    if len(parts) != 2:
-        raise Error("columns: give two columns (n and k), not %r" % (columns,))
-    return ",".join(parts)
-
-
-def _render_args(shape, size, lighting, roughness, background, illuminant, observer, direct,
-                 linear) -> tuple:
-    """The compiled renderer's arguments after the material's own."""
-    return (_text("shape", shape), _whole("size", size, 1, _core._max_tile_size),
-            _text("lighting", lighting), _real("roughness", roughness),
-            "" if background is None else _text("background", background),
-            _text("illuminant", illuminant), _observer("observer", observer),
-            _flag("direct", direct), _flag("linear", linear))
-
-
-def _export_args(prefix, format, scene_dir, roughness) -> tuple:
-    """The compiled export's arguments after the material's own."""
-    return (_path("prefix", prefix), _text("format", format),
-            "" if scene_dir is None else _path("scene_dir", scene_dir), _real("roughness", roughness))
 
 
 class Spectrum:
@@ -300,9 +204,12 @@ class Model:
     """A fitted or loaded model of permittivity eps(lambda, x). Evaluate with :meth:`nk`,
     :meth:`permittivity` and :meth:`color`; save with :meth:`save`."""
 
-    def __init__(self, core, origin: str = "built in Python"):
+    def __init__(self, core, origin: str = "built in Python", source: str = "built in Python",
+                 data: Optional["Dataset"] = None):
         self._core = core
         self._origin = origin  # how export describes the model: "from m.json", ...
+        self._source = source  # how the explorer page names it, as `alloycolor explore`
+        self._data = data      # the data set it was fitted to (explore draws its spectra)
 
     method = property(lambda self: self._core.method)
     system = property(lambda self: self._core.system)
@@ -445,6 +352,34 @@ class Model:
         return self._core._export(xv, self._origin, *_export_args(prefix, format, scene_dir,
                                                                   roughness))
 
+    def explore(self, path: Union[str, os.PathLike], data: Union[None, "Dataset", str] = None,
+                illuminants: Union[str, Sequence[str]] = ("A", "D50", "D65"), observer: int = 2,
+                roughness=(0.0, 0.2), size: int = 320, tolerance: float = 0.02,
+                threads: int = 0) -> dict:
+        """Writes the explorer page (atomically), as ``alloycolor explore`` does: the same
+        bytes for the same model and options (docs/explorer.md). ``data``: the data set whose
+        measured spectra the page draws (default: the one a model from :func:`fit` was
+        fitted to, as ``alloycolor explore --data``; a loaded model draws the spectra its
+        file keeps, or itself at its training compositions); ``illuminants`` offered by
+        the page's selector, one ``observer``; ``roughness``: the finishes (GGX alpha 0-1,
+        0 always offered); ``size``: pixels of each picture (64-1024); ``tolerance``: the
+        tables' largest CIEDE2000; ``threads``: 0 for all. Returns what the tables
+        measured: "compositions", "angles", "illuminants", "finishes", "check_points",
+        "max_de00", "max_srgb8_difference", "tolerance_met" and the page's "bytes"."""
+        if data is None:
+            data = self._data
+        elif not isinstance(data, Dataset):
+            data = Dataset(data)
+        if isinstance(illuminants, str):
+            illuminants = [illuminants]
+        names = [_text("illuminants", name) for name in illuminants]
+        rough = [_real("roughness", r) for r in np.atleast_1d(_real_array("roughness", roughness))]
+        return self._core._explore(
+            _path("path", path), names, _observer("observer", observer), rough,
+            _whole("size", size, -2**31, 2**31 - 1), _real("tolerance", tolerance),
+            _whole("threads", threads, -2**31, 2**31 - 1), self._source,
+            None if data is None else data._core, "" if data is None else data._given)
+
     def _material(self, x: float) -> str:
         return self._core._description(x, self._origin)  # as the export files say
 
@@ -452,54 +387,6 @@ class Model:
         return "Model(%s, %s, x %g-%g, %g-%g nm)" % (
             self.method, self.system, self.x_min, self.x_max, self.lambda_min_nm,
             self.lambda_max_nm)
-
-
-# Every method's options as the registry declares them (name, kind, range, choices, default,
-# help, the methods that take them): fit's keywords, its signature and docstring below, the
-# stubs and docs/methods.md's table (scripts/method_options.py) come from here.
-_METHOD_OPTIONS = {o["name"]: o for o in _core._method_options()}
-
-_OPTION_TYPES = {"whole": int, "number": float, "choice": str, "text": str, "flag": bool}
-
-# The fit grid as one keyword, (from, to, step) in nm: the options it stands for.
-_LAMBDA_RANGE = ("lambda_from_nm", "lambda_to_nm", "lambda_step_nm")
-_LAMBDA_LABELS = ("lambda_range_nm[0] (from)", "lambda_range_nm[1] (to)",
-                  "lambda_range_nm[2] (step)")
-
-
-def _option_value(option: dict, label: str, value):
-    """value as the option's kind takes it (a real number, text, True or False), checked
-    against the option's declaration by the library; errors name ``label``."""
-    kind = option["kind"]
-    if kind in ("whole", "number"):
-        v = _real(label, value)
-    elif kind == "flag":
-        v = _flag(label, value)
-    else:
-        v = _text(label, value)
-    _core._check_option(option["name"], v, label)
-    return v
-
-
-def _fit_options(options: dict, lambda_range_nm) -> dict:
-    """The options given (None: not given, the method's to choose), by the registry's
-    names; an unknown name goes on to the library, which refuses it naming the options."""
-    given = {}
-    for name, value in options.items():
-        if value is None:
-            continue
-        option = _METHOD_OPTIONS.get(name)
-        given[name] = value if option is None else _option_value(option, name, value)
-    if lambda_range_nm is not None:
-        if any(name in given for name in _LAMBDA_RANGE):
-            raise Error("lambda_range_nm: give it or %s, not both" % ", ".join(_LAMBDA_RANGE))
-        if (isinstance(lambda_range_nm, (str, bytes)) or np.ndim(lambda_range_nm) != 1
-                or len(lambda_range_nm) != 3):
-            raise Error("lambda_range_nm: give (from, to, step) in nm, three numbers, not %r"
-                        % (lambda_range_nm,))
-        for name, label, value in zip(_LAMBDA_RANGE, _LAMBDA_LABELS, lambda_range_nm):
-            given[name] = _option_value(_METHOD_OPTIONS[name], label, value)
-    return given
 
 
 def fit(dataset: Union[Dataset, str], method: str = "auto", *,
@@ -518,55 +405,18 @@ def fit(dataset: Union[Dataset, str], method: str = "auto", *,
         # The fit grid's joint checks name the options lambda_range_nm stands for.
         message = str(e).replace("lambda_from_nm, lambda_to_nm: ", "lambda_range_nm: ")
         raise Error(message.replace("lambda_step_nm: ", "lambda_range_nm: ")) from None
-    return Model(core, "built from data " + dataset._given)
+    return Model(core, "built from data " + dataset._given,
+                 "data %s, %s fit" % (dataset._given, core.method), dataset)
 
 
-def _fit_signature() -> inspect.Signature:
-    """fit's signature with a keyword per declared option (its default: the declared one, or
-    None where the method chooses)."""
-    P = inspect.Parameter
-    params = [P("dataset", P.POSITIONAL_OR_KEYWORD, annotation=Union[Dataset, str]),
-              P("method", P.POSITIONAL_OR_KEYWORD, default="auto", annotation=str)]
-    for name, o in _METHOD_OPTIONS.items():
-        params.append(P(name, P.KEYWORD_ONLY, default=o["default"],
-                        annotation=Optional[_OPTION_TYPES[o["kind"]]]))
-    params.append(P("lambda_range_nm", P.KEYWORD_ONLY, default=None,
-                    annotation=Optional[Sequence[float]]))
-    params.append(P("progress", P.KEYWORD_ONLY, default=None,
-                    annotation=Optional[Callable[[str], None]]))
-    return inspect.Signature(params, return_annotation=Model)
-
-
-def _fit_doc() -> str:
-    lines = ["""Fits ``method`` (see :func:`methods`) to a data set, as ``alloycolor fit`` does.
-
-    method: one of :func:`methods`, or "auto" (the default): every method scored by
-    leave-one-composition-out on the samples and the best chosen, as ``alloycolor fit``
-    chooses; the table behind the choice is in ``model.to_json()["fit"]["selection"]``.
-    Every method fitted to three compositions or more carries a cross-validated
-    uncertainty.
-
-    The methods' options, as the registry declares them (an option the method does not
-    take is refused, naming the methods that do; None: not given, the method chooses):
-"""]
-    for name, o in _METHOD_OPTIONS.items():
-        default = "" if o["default"] is None else "; default %r" % (o["default"],)
-        lines.append("    %s (%s; %s%s): %s\n" % (name, ", ".join(o["methods"]), o["values"],
-                                                   default, o["help"]))
-    lines.append("""
-    lambda_range_nm: (from, to, step) of the fit grid, for lambda_from_nm, lambda_to_nm and
-    lambda_step_nm together; progress: called with one-line messages.""")
-    return "".join(lines)
-
-
-fit.__signature__ = _fit_signature()
+fit.__signature__ = _fit_signature(Dataset, Model)
 fit.__doc__ = _fit_doc()
 
 
 def load_model(path: Union[str, os.PathLike]) -> Model:
     """Reads a model file written by ``alloycolor fit --out`` or :meth:`Model.save`."""
     path = _path("path", path)
-    return Model(_core._load_model(path), "from " + path)
+    return Model(_core._load_model(path), "from " + path, path)
 
 
 _COLOR_KEYS = ("xyz", "lab", "linear_srgb", "srgb8", "paper_rgb")

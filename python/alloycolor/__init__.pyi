@@ -96,6 +96,10 @@ class Model:
     def spectra(self, x: Union[float, str], material: Optional[str] = ...) -> dict[str, Any]: ...
     def write_spd(self, x: Union[float, str], eta_path: _Path, k_path: _Path,
                   material: Optional[str] = ...) -> None: ...
+    def explore(self, path: _Path, data: Union[None, Dataset, _Path] = ...,
+                illuminants: Union[str, Sequence[str]] = ..., observer: int = ...,
+                roughness: npt.ArrayLike = ..., size: int = ..., tolerance: float = ...,
+                threads: int = ...) -> dict[str, Any]: ...
 
 def fit(dataset: Union[Dataset, _Path], method: str = ..., *,
         # options: generated from the registry by scripts/method_options.py; do not edit

@@ -70,8 +70,9 @@ void Store(const color::ColorResult& r, std::size_t i, const ColorPointers& p) {
 }
 
 // Colours of a model at x[i] seen at angle[i] (1-D arrays of one length). Compositions are
-// grouped by angle; an angle with many compositions uses ColorSweep's XYZ table (error at
-// most color::kSweepTableTolerance, checked while it is built) unless exact is asked for.
+// grouped by angle; an angle with many compositions uses ColorSweep's XYZ table
+// (BuildTableFor: error at most color::kSweepTableTolerance, checked while it is built)
+// unless exact is asked for, as `alloycolor sweep` does.
 py::dict ModelColors(const AlloyModel& model, const Array& x_in, const Array& angle_in,
                      const std::string& illuminant, int observer_deg, bool sigma, bool exact) {
   if (x_in.size() != angle_in.size()) throw Error("color: x and angle_deg differ in length");
@@ -88,11 +89,9 @@ py::dict ModelColors(const AlloyModel& model, const Array& x_in, const Array& an
     for (std::size_t i = 0; i < xs.size(); ++i) by_angle[angles[i]].push_back(i);
     for (const auto& [angle, indices] : by_angle) {
       color::ColorSweep sweep(colorimeter, model, angle);
-      if (!exact && indices.size() >= 1000) {
-        double lo = xs[indices[0]], hi = lo;
-        for (std::size_t i : indices) lo = std::min(lo, xs[i]), hi = std::max(hi, xs[i]);
-        if (hi > lo) sweep.BuildTable(lo, hi);
-      }
+      double lo = xs[indices[0]], hi = lo;
+      for (std::size_t i : indices) lo = std::min(lo, xs[i]), hi = std::max(hi, xs[i]);
+      sweep.BuildTableFor(indices.size(), lo, hi, exact);
       for (std::size_t i : indices) {
         const color::XYZ xyz = sweep.has_table() ? sweep.XYZAt(xs[i]) : sweep.ExactXYZ(xs[i]);
         Store(color::ColorFromXYZ(colorimeter, xyz), i, p);

@@ -3,7 +3,9 @@
 #include <pybind11/stl.h>
 
 #include "alloycolor/color/material_color.h"
+#include "alloycolor/core/error.h"
 #include "alloycolor/core/output.h"
+#include "alloycolor/export/explorer_page.h"
 #include "alloycolor/export/export_files.h"
 #include "alloycolor/export/spectral_export.h"
 #include "alloycolor/render/image.h"
@@ -82,6 +84,39 @@ py::object WriteExport(const MaterialOn& material_on, const std::string& prefix,
   return JsonToPython(doc);
 }
 
+// Writes the explorer page `alloycolor explore` writes (export/explorer_page.h) and returns
+// what its tables measured.
+py::dict WriteExplorer(const AlloyModel& model, const std::string& path,
+                       const std::vector<std::string>& illuminants, int observer_deg,
+                       exports::ExplorerOptions options) {
+  exports::CheckExplorerOptions(options);
+  std::vector<color::Colorimeter> colorimeters;
+  for (const std::string& name : illuminants) {
+    try {
+      colorimeters.push_back(GetColorimeter(name, observer_deg));
+    } catch (const Error& e) {
+      throw Error(std::string("illuminants: ") + e.what());
+    }
+  }
+  exports::ExplorerPage page;
+  {
+    py::gil_scoped_release release;
+    page = exports::BuildExplorerPage(model, colorimeters, options);
+    WriteFileAtomic(path, page.html);
+  }
+  py::dict d;
+  d["compositions"] = page.compositions;
+  d["angles"] = page.angles;
+  d["illuminants"] = page.illuminants;
+  d["finishes"] = page.finishes;
+  d["check_points"] = page.check_points;
+  d["max_de00"] = page.max_de00;
+  d["max_srgb8_difference"] = page.max_srgb8_difference;
+  d["tolerance_met"] = page.tolerance_met;
+  d["bytes"] = page.html.size();
+  return d;
+}
+
 }  // namespace
 
 void BindOutputs(py::module_& m, SpectrumClass& spectrum, ModelClass& model) {
@@ -131,6 +166,21 @@ void BindOutputs(py::module_& m, SpectrumClass& spectrum, ModelClass& model) {
       .def("_description",
            [](const AlloyModel& a, double x, const std::string& origin) {
              return exports::AlloyDescription(a, x, origin);
+           })
+      .def("_explore",
+           [](const AlloyModel& a, const std::string& path,
+              const std::vector<std::string>& illuminants, int observer_deg,
+              const std::vector<double>& roughness, int size, double tolerance, int threads,
+              const std::string& source, const Dataset* data, const std::string& data_name) {
+             exports::ExplorerOptions options;
+             options.roughness = roughness;
+             options.size = size;
+             options.tolerance_de00 = tolerance;
+             options.threads = threads;
+             options.source = source;
+             options.data = data;
+             options.data_name = data_name;
+             return WriteExplorer(a, path, illuminants, observer_deg, options);
            })
       .def("_write_spd", [](const AlloyModel& a, double x, const std::string& material,
                             const std::string& eta_path, const std::string& k_path) {

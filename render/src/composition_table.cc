@@ -9,6 +9,7 @@
 
 #include "alloycolor/color/material_color.h"
 #include "alloycolor/core/error.h"
+#include "alloycolor/core/grid.h"
 #include "alloycolor/core/parallel.h"
 #include "alloycolor/core/units.h"
 
@@ -16,9 +17,6 @@ namespace alloycolor::render {
 namespace {
 
 constexpr double kSameX = 1e-12;
-constexpr double kSpectrumStepNm = 5.0;
-constexpr double kSpectrumLoNm = 360.0;
-constexpr double kSpectrumHiNm = 830.0;
 
 // Weights of the cubic through nodes 0, 1, 2, 3 at position t.
 void LagrangeWeights(double t, double w[4]) {
@@ -335,10 +333,10 @@ class Builder {
   }
 
   void FillSpectra(CompositionTable* table) const {
-    const double lo = std::max(kSpectrumLoNm, model_.lambda_min_nm());
-    const double hi = std::min(kSpectrumHiNm, model_.lambda_max_nm());
-    for (double l = std::ceil(lo / kSpectrumStepNm - 1e-9) * kSpectrumStepNm; l <= hi + 1e-9;
-         l += kSpectrumStepNm) {
+    const double lo = std::max(kColourTableMinNm, model_.lambda_min_nm());
+    const double hi = std::min(kColourTableMaxNm, model_.lambda_max_nm());
+    for (double l = std::ceil(lo / kGridStepNm - 1e-9) * kGridStepNm; l <= hi + 1e-9;
+         l += kGridStepNm) {
       table->lambda_nm.push_back(std::min(l, hi));
     }
     const std::size_t nl = table->lambda_nm.size();

@@ -1,4 +1,4 @@
-// app/explore/colour.js under Node: the page's colour formulas and table interpolation
+// export/explore/colour.js under Node: the page's colour formulas and table interpolation
 // against published values (Sharma, Wu & Dalal 2005; colour-science; IEC 61966-2-1) and
 // values worked by hand in the comments.
 "use strict";
@@ -6,7 +6,7 @@ const test = require("node:test");
 const assert = require("node:assert");
 const fs = require("node:fs");
 const path = require("node:path");
-const C = require("../../app/explore/colour.js");
+const C = require("../../export/explore/colour.js");
 
 const near = (actual, expected, tolerance, what) =>
   assert.ok(Math.abs(actual - expected) <= tolerance, `${what}: ${actual} vs ${expected} ± ${tolerance}`);

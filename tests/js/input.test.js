@@ -1,9 +1,9 @@
-// app/explore/input.js under Node: compositions typed in the page and the view kept in its
+// export/explore/input.js under Node: compositions typed in the page and the view kept in its
 // address. Expected compositions are worked by hand from CIAAW atomic masses.
 "use strict";
 const test = require("node:test");
 const assert = require("node:assert");
-const I = require("../../app/explore/input.js");
+const I = require("../../export/explore/input.js");
 
 const AU_AG = { a: "Au", b: "Ag", mass_a: 196.96657, mass_b: 107.8682 };
 const AG_AU = { a: "Ag", b: "Au", mass_a: 107.8682, mass_b: 196.96657 };

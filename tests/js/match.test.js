@@ -9,8 +9,8 @@ const fs = require("node:fs");
 const os = require("node:os");
 const path = require("node:path");
 const { execFileSync } = require("node:child_process");
-const C = require("../../app/explore/colour.js");
-const I = require("../../app/explore/input.js");
+const C = require("../../export/explore/colour.js");
+const I = require("../../export/explore/input.js");
 
 const program = process.env.ALLOYCOLOR_BINARY;
 if (!program || !fs.existsSync(program)) {

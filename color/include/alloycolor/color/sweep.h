@@ -34,6 +34,9 @@ namespace alloycolor::color {
 
 inline constexpr double kSweepTableTolerance = 1e-7;
 inline constexpr int kSweepMaxTableNodes = 1 << 20;
+// Sweeps of this many compositions or more at one angle read XYZ from the table (unless
+// exact evaluation is asked for): `alloycolor sweep` and Python's colours alike.
+inline constexpr std::size_t kSweepTableMinCompositions = 1000;
 
 class ColorSweep {
  public:
@@ -51,6 +54,11 @@ class ColorSweep {
   // or when the model gives a non-finite colour somewhere.
   bool BuildTable(double x_from, double x_to, double tolerance = kSweepTableTolerance,
                   int max_nodes = kSweepMaxTableNodes);
+  // The table for a sweep of `count` compositions over [x_from, x_to], when the sweep is
+  // long enough to read one (kSweepTableMinCompositions), not `exact` and not at one
+  // composition: BuildTable with at most `count` nodes (never more evaluations than the
+  // sweep's own). Returns whether there is a table.
+  bool BuildTableFor(std::size_t count, double x_from, double x_to, bool exact);
   bool has_table() const { return !segments_.empty(); }
   // The largest |dX|, |dY|, |dZ| measured at the interval midpoints while building.
   double table_error() const { return table_error_; }

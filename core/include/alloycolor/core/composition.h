@@ -56,7 +56,7 @@ double WeightFromAtomicFraction(double x_a, const AlloySystem& system);
 // ("0.75"), atomic percent ("75at%"), weight percent ("75wt%") or, for gold alloys, a
 // karat ("18k": 18/24 of the weight is gold). Returns x_atomic; throws Error naming the
 // text when it cannot be read, lies outside [0, 1] or is longer than
-// kMaxCompositionChars (the explorer page's parser, app/explore/input.js, follows the
+// kMaxCompositionChars (the explorer page's parser, export/explore/input.js, follows the
 // same rules and bound: tests/reference/compositions.txt is the list both are tested on).
 inline constexpr std::size_t kMaxCompositionChars = 64;
 double ParseComposition(const std::string& text, const AlloySystem& system);

@@ -10,7 +10,10 @@
 #ifndef ALLOYCOLOR_CORE_SIMD_H_
 #define ALLOYCOLOR_CORE_SIMD_H_
 
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && defined(__linux__)
+// Not under ThreadSanitizer (scripts/tsan.sh): it instruments the ifunc resolver, which the
+// loader runs before the sanitizer's runtime has started.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && defined(__linux__) && \
+    !defined(__SANITIZE_THREAD__)
 #define ALLOYCOLOR_SIMD_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
 #else
 #define ALLOYCOLOR_SIMD_CLONES

@@ -39,17 +39,19 @@
 #include <string>
 #include <vector>
 
+#include "alloycolor/core/grid.h"
 #include "alloycolor/core/spectrum.h"
 #include "alloycolor/model/alloy_model.h"
 
 namespace alloycolor::exports {
 
-inline constexpr double kExportMinNm = 360.0;
-inline constexpr double kExportMaxNm = 830.0;
+// The colour tables' grid (core/grid.h): 360-830 nm every 5 nm.
+inline constexpr double kExportMinNm = kColourTableMinNm;
+inline constexpr double kExportMaxNm = kColourTableMaxNm;
 // The range the data themselves must cover.
 inline constexpr double kExportNeedMinNm = 380.0;
 inline constexpr double kExportNeedMaxNm = 780.0;
-inline constexpr double kExportStepNm = 5.0;
+inline constexpr double kExportStepNm = kGridStepNm;
 
 struct ConductorSpectra {
   std::string material;           // "Au-Ag at x = 0.75 (...)": the first comment line

@@ -1,5 +1,5 @@
 "use strict";
-// The explorer page's script (app/explore_page.h): the sliders, the canvas shading from
+// The explorer page's script (export/explorer_page.h): the sliders, the canvas shading from
 // the program's tables, the plots and the address. The formulas are colour.js's, the
 // parsing of what a user types input.js's; this file holds the page's state and elements.
 (() => {

@@ -13,6 +13,7 @@
 #include "alloycolor/core/composition.h"
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/io.h"
+#include "alloycolor/core/json.h"
 #include "alloycolor/core/text.h"
 #include "common.h"
 
@@ -69,8 +70,6 @@ color::Lab ColourTarget(const MatchCommandOptions& o, const color::Colorimeter& 
     throw Error(option + ": " + what);
   }
 }
-
-nlohmann::json NumberOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nullptr; }
 
 std::string SigmaText(double x_sigma) {
   if (std::isnan(x_sigma)) return "";
@@ -172,6 +171,8 @@ void Run(const MatchCommandOptions& o) {
                           {"reachable", reachable},
                           {"verdict", verdict},
                           {"x_range", {model->x_min(), model->x_max()}},
+                          {"error_bar", model->HasUncertainty() ? std::string("one sigma")
+                                                                : model->NoErrorBarReason()},
                           {"matches", rows}};
     if (!is_spectrum) out["target_lab"] = {target.L, target.a, target.b};
     std::cout << out.dump(2) << "\n";
@@ -185,6 +186,7 @@ void Run(const MatchCommandOptions& o) {
   text += "best: x = " + DescribeComposition(best.x_atomic, system) + SigmaText(best.x_sigma) +
           "; " + DistanceText(best, is_spectrum) + " left" +
           (best.at_range_end ? " (at the end of the model's range)" : "") + "\n";
+  if (!model->HasUncertainty()) text += model->NoErrorBarReason() + "\n";
   const std::string margin_text = is_spectrum ? FormatNumber(o.margin) + " % reflectance RMS"
                                               : "dE00 " + FormatNumber(o.margin);
   if (matches.size() == 1)

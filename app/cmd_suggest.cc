@@ -36,8 +36,6 @@ double GivenComposition(const AlloyModel& model, double x_atomic) {
              : x_atomic;
 }
 
-nlohmann::json NumberOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nullptr; }
-
 void Run(const SuggestCommandOptions& o) {
   color::SuggestOptions options;
   options.count = o.count;
@@ -53,6 +51,7 @@ void Run(const SuggestCommandOptions& o) {
     for (const color::Suggestion& s : r.suggestions) {
       nlohmann::json row = {{"x", s.x_atomic}, {"x_given", GivenComposition(*model, s.x_atomic)}};
       row.update(CompositionJson(s.x_atomic, model->system()));
+      row.erase("x_atomic");  // "x" already
       row[sigma_key] = NumberOrNull(s.sigma);
       row["max_sigma_before"] = NumberOrNull(s.max_sigma_before);
       row["max_sigma_after"] = NumberOrNull(s.max_sigma_after);

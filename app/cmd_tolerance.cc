@@ -11,6 +11,7 @@
 #include "alloycolor/color/match.h"
 #include "alloycolor/core/composition.h"
 #include "alloycolor/core/error.h"
+#include "alloycolor/core/json.h"
 #include "alloycolor/core/text.h"
 #include "common.h"
 
@@ -90,6 +91,9 @@ void Run(const ToleranceCommandOptions& o) {
                           {"illuminants", Names(o.illuminants)},
                           {"observer", o.observer},
                           {"x_range", {model->x_min(), model->x_max()}}};
+    out["model_sigma_de00"] = NumberOrNull(w.model_sigma_de00);
+    out["x_sigma"] = NumberOrNull(w.x_sigma);
+    if (!model->HasUncertainty()) out["error_bar"] = model->NoErrorBarReason();
     std::cout << out.dump(2) << "\n";
     return;
   }
@@ -109,6 +113,14 @@ void Run(const ToleranceCommandOptions& o) {
                 "colour changes by %.3g dE00 per at%% at x (the fastest of %s)\n",
                 w.de00_per_x / 100.0, conditions.c_str());
   text += line;
+  if (std::isfinite(w.model_sigma_de00)) {
+    std::snprintf(line, sizeof line,
+                  "the model's own one-sigma there: dE00 %.3g, a composition of +- %.3g at%%\n",
+                  w.model_sigma_de00, 100 * w.x_sigma);
+    text += line;
+  } else {
+    text += model->NoErrorBarReason() + "\n";
+  }
   std::cout << text;
 }
 

@@ -245,9 +245,20 @@ TEST(Suggest, KeepsAwayFromSamplesInsideTheRangeAndPrintsColorsSigma) {
     EXPECT_LE(s.mean_sigma_after, s.mean_sigma_before);
     previous_max = s.max_sigma_after;
   }
-  // The first is the scan's largest one-sigma.
-  EXPECT_DOUBLE_EQ(r.suggestions[0].sigma,
-                   *std::max_element(r.scan_sigma.begin(), r.scan_sigma.end()));
+  // Measuring the suggestions lowers the mean one-sigma over the range.
+  EXPECT_LT(r.suggestions.back().mean_sigma_after, 0.9 * r.suggestions[0].mean_sigma_before);
+  // The widest gap's rule: the middle of the widest gap, the range's ends counted.
+  options.rule = color::SuggestRule::kWidestGap;
+  options.count = 1;
+  const color::SuggestResult widest = color::SuggestCompositions(D65(), *model, options);
+  std::vector<double> xs;
+  for (const TrainingSample& t : model->training_samples()) xs.push_back(t.x_atomic);
+  double width = 0, middle = 0;
+  for (size_t i = 1; i < xs.size(); ++i) {
+    if (xs[i] - xs[i - 1] > width) width = xs[i] - xs[i - 1], middle = (xs[i] + xs[i - 1]) / 2;
+  }
+  ASSERT_EQ(widest.suggestions.size(), 1u);
+  EXPECT_DOUBLE_EQ(widest.suggestions[0].x_atomic, middle);
   // Without error bars, the middle of the widest gap.
   Dataset two = dataset;
   two.samples = {dataset.samples[1], dataset.samples[4]};

@@ -518,6 +518,14 @@ ToleranceWindow Tolerance(const std::vector<Colorimeter>& colorimeters, const Al
     window.de00_per_x = std::max(
         window.de00_per_x, ColourSpeedOf([&k](double x) { return k.At(x); }, x_atomic, model));
   }
+  if (model.HasUncertainty()) {
+    const double sigma =
+        DeltaE00Sigma(colorimeters.front(), model, x_atomic, options.angles_deg.front());
+    if (sigma >= 0) {
+      window.model_sigma_de00 = sigma;
+      if (window.de00_per_x > 0) window.x_sigma = sigma / window.de00_per_x;
+    }
+  }
   return window;
 }
 

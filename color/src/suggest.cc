@@ -44,6 +44,21 @@ std::unique_ptr<AlloyModel> AfterMeasuring(const AlloyModel& model,
   return copy;
 }
 
+// The model with only the error bars' part that a new measurement can remove: the
+// interpolation's (scale * B); the misfit, the replicates' scatter and the precision stay
+// whatever is measured next.
+std::unique_ptr<AlloyModel> Reducible(const AlloyModel& model) {
+  std::unique_ptr<AlloyModel> copy = AfterMeasuring(model, {});
+  PredictionError e = copy->prediction_error();
+  if (!e.present()) return copy;
+  e.misfit.clear();
+  e.scatter.clear();
+  e.misfit_lambda_nm.clear();
+  e.precision = 0;
+  copy->set_prediction_error(std::move(e));
+  return copy;
+}
+
 // The relative eps one-sigma of a prediction error at x: its draws' normal terms.
 double RelativeEpsSigma(const PredictionError& e, double x) {
   double mean_scale = 0;
@@ -124,7 +139,11 @@ SuggestResult SuggestCompositions(const Colorimeter& colorimeter, const AlloyMod
   }
   if (sigma)
     result.scan_sigma = SigmaAt(colorimeter, model, colour, result.scan_x, options.threads);
-  std::vector<double> current = result.scan_sigma, chosen;
+  // The rule looks at what a measurement can remove; the figures are the whole one-sigma's.
+  std::vector<double> reducible, chosen;
+  if (sigma && rule == SuggestRule::kLargestSigma) {
+    reducible = SigmaAt(colorimeter, *Reducible(model), colour, result.scan_x, options.threads);
+  }
   for (int n = 0; n < options.count; ++n) {
     std::vector<double> taken = measured;
     taken.insert(taken.end(), chosen.begin(), chosen.end());
@@ -134,8 +153,8 @@ SuggestResult SuggestCompositions(const Colorimeter& colorimeter, const AlloyMod
     } else {
       double best = -1;
       for (size_t i = 0; i < result.scan_x.size(); ++i) {
-        if (current[i] > best && FarFrom(result.scan_x[i], taken, options.min_distance)) {
-          best = current[i], x = result.scan_x[i];
+        if (reducible[i] > best && FarFrom(result.scan_x[i], taken, options.min_distance)) {
+          best = reducible[i], x = result.scan_x[i];
         }
       }
     }
@@ -152,7 +171,10 @@ SuggestResult SuggestCompositions(const Colorimeter& colorimeter, const AlloyMod
       s.mean_sigma_before = Mean(result.scan_sigma);
       s.max_sigma_after = *std::max_element(next.begin(), next.end());
       s.mean_sigma_after = Mean(next);
-      current = next;
+      if (rule == SuggestRule::kLargestSigma && n + 1 < options.count) {
+        reducible =
+            SigmaAt(colorimeter, *Reducible(*after), colour, result.scan_x, options.threads);
+      }
     }
     result.suggestions.push_back(s);
   }

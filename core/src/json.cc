@@ -61,4 +61,8 @@ bool WholeNumber(const nlohmann::json& value_json, std::int64_t lo, std::int64_t
   return false;
 }
 
+nlohmann::json NumberOrNull(double value) {
+  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
+}
+
 }  // namespace alloycolor

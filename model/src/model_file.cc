@@ -16,9 +16,6 @@ namespace alloycolor {
 
 namespace {
 
-// A number, or null where it is not finite (JSON has no NaN).
-nlohmann::json NumberOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nullptr; }
-
 nlohmann::json SampleNotesJson(const std::vector<SampleNote>& notes) {
   nlohmann::json list = nlohmann::json::array();
   for (const SampleNote& n : notes) {

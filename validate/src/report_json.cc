@@ -14,7 +14,7 @@ nlohmann::json DrudeCurvesJson(const std::vector<DrudeCurve>& curves) {
     nlohmann::json curve = {{"lambda_nm", c.lambda_nm}};
     const auto nulls = [](const std::vector<double>& v) {
       nlohmann::json a = nlohmann::json::array();
-      for (double x : v) a.push_back(OrNull(x));
+      for (double x : v) a.push_back(NumberOrNull(x));
       return a;
     };
     curve["train"] = {
@@ -42,8 +42,8 @@ nlohmann::json SplitJson(const SplitResult& s) {
     for (const InSampleError& r : rows) {
       list.push_back({{"x", r.x_atomic},
                       {"file", r.file},
-                      {"delta_e00", OrNull(r.delta_e00)},
-                      {"reflectance_rms", OrNull(r.reflectance_rms)}});
+                      {"delta_e00", NumberOrNull(r.delta_e00)},
+                      {"reflectance_rms", NumberOrNull(r.reflectance_rms)}});
     }
     in_sample[method] = list;
   }
@@ -73,7 +73,7 @@ nlohmann::json MethodResultJson(const ValidationReport& report, const HoldoutRes
                       {"Lab", LabByAngle(report.angles_deg, r.lab)}};
   if (std::isfinite(r.x_recovered)) {
     m["recovered"] = {{"x_atomic", r.x_recovered},
-                      {"x_sigma", OrNull(r.x_recovered_sigma)},
+                      {"x_sigma", NumberOrNull(r.x_recovered_sigma)},
                       {"error_at_percent", 100 * (r.x_recovered - h.x_atomic)}};
   }
   if (!r.error.empty()) m["note"] = r.error;
@@ -109,8 +109,10 @@ nlohmann::json SummaryJson(const ValidationReport& report) {
     nlohmann::json row = nlohmann::json::object();
     for (const std::string& method : report.methods) {
       const MetricSummary s = Summarise(report, method, metric);
-      row[method] = {
-          {"count", s.count}, {"mean", OrNull(s.mean)}, {"max", OrNull(s.max)}, {"wins", s.wins}};
+      row[method] = {{"count", s.count},
+                     {"mean", NumberOrNull(s.mean)},
+                     {"max", NumberOrNull(s.max)},
+                     {"wins", s.wins}};
     }
     summary[metric.key] = row;
   }
@@ -129,7 +131,7 @@ nlohmann::json SigmaHonestyJson(const ValidationReport& report) {
           {"count", s.count},
           {"within_1_sigma", s.within_1},
           {"within_2_sigma", s.within_2},
-          {"median_observed_over_sigma", OrNull(s.median_ratio)},
+          {"median_observed_over_sigma", NumberOrNull(s.median_ratio)},
           {"verdict", verdict.kind},
           {"verdict_text", verdict.text}};
     }
@@ -144,7 +146,7 @@ nlohmann::json CompositionRecoveryJson(const ValidationReport& report) {
     const RecoverySummary s = Recovery(report, method);
     if (s.count == 0) continue;
     recovery[method] = {{"count", s.count},
-                        {"mean_abs_error_at_percent", OrNull(s.mean_abs_at_percent)},
+                        {"mean_abs_error_at_percent", NumberOrNull(s.mean_abs_at_percent)},
                         {"with_sigma", s.with_sigma},
                         {"within_2_sigma", s.within_2}};
   }

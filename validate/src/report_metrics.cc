@@ -97,13 +97,11 @@ MetricSummary Summarise(const ValidationReport& report, const std::string& metho
   return s;
 }
 
-nlohmann::json OrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nullptr; }
-
 nlohmann::json ByAngle(const std::vector<double>& angles, const std::vector<double>& values) {
   if (values.empty()) return nullptr;
   nlohmann::json out = nlohmann::json::object();
   for (size_t a = 0; a < angles.size() && a < values.size(); ++a) {
-    out[Num(angles[a])] = OrNull(values[a]);
+    out[Num(angles[a])] = NumberOrNull(values[a]);
   }
   return out;
 }

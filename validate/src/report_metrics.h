@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "alloycolor/core/json.h"
 #include "alloycolor/validate/report.h"
 
 namespace alloycolor::validate {
@@ -49,7 +50,6 @@ struct MetricSummary {
 MetricSummary Summarise(const ValidationReport& report, const std::string& method,
                         const Metric& metric);
 
-nlohmann::json OrNull(double v);
 nlohmann::json ByAngle(const std::vector<double>& angles, const std::vector<double>& values);
 nlohmann::json HexByAngle(const std::vector<double>& angles,
                           const std::vector<std::array<std::uint8_t, 3>>& srgb8);

@@ -225,17 +225,17 @@ nlohmann::json WholeJson(const WholeDataSet& w) {
                      {"x", n.x_atomic},
                      {"check", n.check},
                      {"reason", n.reason},
-                     {"delta_e00", OrNull(n.delta_e00)},
-                     {"sigma_de00", OrNull(n.sigma_de00)}});
+                     {"delta_e00", NumberOrNull(n.delta_e00)},
+                     {"sigma_de00", NumberOrNull(n.sigma_de00)}});
     }
     return out;
   };
   nlohmann::json suggestions = nlohmann::json::array();
   for (const color::Suggestion& s : w.suggestions) {
     suggestions.push_back({{"x", s.x_atomic},
-                           {"sigma_de00", OrNull(s.sigma)},
-                           {"max_sigma_after", OrNull(s.max_sigma_after)},
-                           {"mean_sigma_after", OrNull(s.mean_sigma_after)}});
+                           {"sigma_de00", NumberOrNull(s.sigma)},
+                           {"max_sigma_after", NumberOrNull(s.max_sigma_after)},
+                           {"mean_sigma_after", NumberOrNull(s.mean_sigma_after)}});
   }
   nlohmann::json out = {{"method", w.method},
                         {"choice", w.choice},

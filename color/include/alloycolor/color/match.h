@@ -163,6 +163,12 @@ struct ToleranceWindow {
   double de00_per_x = 0.0;
   // Which illuminant and angle bound each side (empty when clipped).
   std::string limit_low, limit_high;
+  // The model's own one-sigma colour uncertainty at x_atomic under the first colorimeter
+  // and angle (DeltaE00Sigma), and the composition it amounts to at the colour speed there
+  // (model_sigma_de00 / de00_per_x): how finely the model itself can tell compositions
+  // apart. NaN without error bars (AlloyModel::NoErrorBarReason).
+  double model_sigma_de00 = std::numeric_limits<double>::quiet_NaN();
+  double x_sigma = std::numeric_limits<double>::quiet_NaN();
 };
 
 // The window around x_atomic for every colorimeter (illuminant, observer) and angle.

@@ -8,8 +8,10 @@
 // measured at x0 puts x0 among the prediction error's compositions (model/alloy_model.h:
 // B = 0 there, and the gaps beside it shrink), which is what the model would carry after
 // the measurement if the method's error scale stayed as it is. The rule (SuggestRule):
-//  - kLargestSigma, the default: the scanned composition of largest one-sigma, at least
-//    min_distance from every training composition and every earlier suggestion;
+//  - kLargestSigma, the default: the scanned composition where the one-sigma a measurement
+//    can remove is largest (the interpolation's, scale * B; the misfit, the replicates'
+//    scatter and the data's precision stay whatever is measured), at least min_distance
+//    from every training composition and every earlier suggestion;
 //  - kWidestGap: the middle of the widest gap between those compositions (the ends of the
 //    range count as compositions), the obvious alternative, and the only one for a model
 //    without error bars.

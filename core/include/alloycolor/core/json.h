@@ -27,6 +27,9 @@ std::string JsonText(const nlohmann::json& value, int indent = -1);
 bool WholeNumber(const nlohmann::json& value_json, std::int64_t lo, std::int64_t hi,
                  std::int64_t* value);
 
+// A number, or null where it is not finite (JSON has no NaN nor infinity).
+nlohmann::json NumberOrNull(double value);
+
 }  // namespace alloycolor
 
 #endif  // ALLOYCOLOR_CORE_JSON_H_

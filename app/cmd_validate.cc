@@ -248,10 +248,15 @@ void RegisterValidate(CLI::App& app) {
   cmd->add_flag("--loo", o->loo,
                 "Leave one out: hold out each interior composition in turn, with all its "
                 "replicates (the default)");
+  std::string defaults;  // the methods the registry has validate run when none is named
+  for (const std::string& m : DefaultValidationMethods()) {
+    defaults += (defaults.empty() ? "" : ", ") + m;
+  }
   cmd->add_option("--methods", o->methods,
                   "Methods to compare, comma-separated, or all (every method and auto, which "
                   "runs its own leave-one-out inside every fold, on the training samples only); "
-                  "default: every method but physical");
+                  "default: " +
+                      defaults);
   cmd->add_option("--angles", o->angles, "Angles of incidence for colour, degrees")
       ->capture_default_str();
   AddColorimetryOptions(cmd, &o->illuminant, &o->observer);

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "alloycolor/core/error.h"
+#include "alloycolor/core/grid.h"
 #include "alloycolor/core/io.h"
 #include "alloycolor/core/json.h"
 #include "alloycolor/core/text.h"
@@ -517,8 +518,10 @@ void CheckModelUsable(const AlloyModel& model) {
   // The colour tables' grid held inside the range (as the colour commands evaluate it), or
   // for a model outside the visible 101 wavelengths across its range; and the native grid.
   std::vector<double> colour;
-  for (double l = 360.0; l <= 830.0; l += 5.0) colour.push_back(std::clamp(l, lo, hi));
-  if (hi < 360.0 || lo > 830.0) {
+  for (double l = kColourTableMinNm; l <= kColourTableMaxNm; l += kGridStepNm) {
+    colour.push_back(std::clamp(l, lo, hi));
+  }
+  if (hi < kColourTableMinNm || lo > kColourTableMaxNm) {
     colour.clear();
     for (int i = 0; i <= 100; ++i) colour.push_back(lo + (hi - lo) * i / 100.0);
   }

@@ -23,6 +23,7 @@
 #include "alloycolor/fit/lineage.h"
 #include "alloycolor/fit/methods.h"
 #include "alloycolor/fit/suspects.h"
+#include "alloycolor/validate/validation.h"
 #include "test_util.h"
 
 namespace alloycolor {
@@ -162,6 +163,28 @@ TEST(Exclude, ASampleSetAsideIsKeptWithItsReasonAndScoredAsHeldOut) {
   const auto back = ModelFromJson(model->ToJson(), "m.json");
   ASSERT_EQ(back->excluded_samples().size(), 1u);
   EXPECT_EQ(back->excluded_samples()[0].reason, zinc.reason);
+  // The validation report holds it out of every split and scores it in a split of its own,
+  // trained on every sample in use; the summaries leave it out.
+  validate::ValidationOptions v;
+  v.build = fit::SharedFitBuilder(D65());
+  v.methods = {"eps-linear"};
+  v.angles_deg = {0.0};
+  v.mode = "loo";
+  const validate::ValidationReport report =
+      validate::ComputeValidation(dataset, validate::LeaveOneOutSplits(dataset), D65(), v, nullptr);
+  int aside = 0;
+  for (const validate::HoldoutResult& h : report.holdouts) {
+    if (h.excluded.empty()) continue;
+    ++aside;
+    EXPECT_EQ(h.file, "Querry-Zn100.yml");
+    EXPECT_EQ(report.splits[h.split].train_x.size(), dataset.samples.size());
+    EXPECT_GT(h.results.at("eps-linear").delta_e00.at(0), 5);
+  }
+  EXPECT_EQ(aside, 1);
+  for (const validate::SplitResult& split : report.splits) {
+    for (double x : split.train_x) EXPECT_NE(x, 0.0) << "a split trained on the zinc set aside";
+  }
+  EXPECT_EQ(validate::Coverage(report, "eps-linear", 0).count, 2);  // the two interior folds
   // A reason must be text.
   manifest["samples"][0]["exclude"] = true;
   WriteText(dir + "/dataset.json", manifest.dump());

@@ -204,7 +204,10 @@ std::string XLabel(const ValidationReport& report, const HoldoutResult& h) {
 std::string RowLabel(const ValidationReport& report, const HoldoutResult& h) {
   return Num(h.x_atomic, "%.4g") +
          (WeightManifest(report) ? " <small>(" + Num(h.x_given, "%.4g") + " wt)</small>" : "") +
-         (h.replicate ? " <small>" + EscapeXml(h.file) + "</small>" : "");
+         (h.replicate ? " <small>" + EscapeXml(h.file) + "</small>" : "") +
+         (h.excluded.empty()
+              ? ""
+              : " <small>set aside: " + EscapeXml(h.excluded) + " (not in the means)</small>");
 }
 
 void WriteVerdict(const ValidationReport& report, std::ostringstream& html) {

@@ -94,6 +94,7 @@ nlohmann::json HoldoutJson(const ValidationReport& report, const HoldoutResult& 
                           {{"srgb_hex", HexByAngle(report.angles_deg, h.srgb8)},
                            {"Lab", LabByAngle(report.angles_deg, h.lab)}}}};
   if (!h.colour_note.empty()) item["delta_e00_note"] = "not available: " + h.colour_note;
+  if (!h.excluded.empty()) item["excluded"] = h.excluded;  // set aside: not in the summary
   nlohmann::json results = nlohmann::json::object();
   for (const std::string& method : report.methods) {
     results[method] = MethodResultJson(report, h, method);

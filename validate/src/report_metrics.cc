@@ -87,7 +87,7 @@ MetricSummary Summarise(const ValidationReport& report, const std::string& metho
   double sum = 0;
   for (const HoldoutResult& h : report.holdouts) {
     const double v = ValueOf(h, method, metric);
-    if (!std::isfinite(v)) continue;
+    if (!std::isfinite(v) || !h.excluded.empty()) continue;  // set aside: shown, not counted
     ++s.count;
     sum += v;
     s.max = s.count == 1 ? v : std::max(s.max, v);

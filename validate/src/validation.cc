@@ -144,16 +144,24 @@ void FillDrudeCurves(const AlloyModel& model, const std::string& method, const A
   }
 }
 
-SplitResult PrepareSplit(const Dataset& dataset, const SampleSplit& held) {
+// The training set of a split: the data set without the held-out samples and without the
+// samples set aside (every sample from index `in_use` on).
+Dataset TrainingOf(const Dataset& dataset, SampleSplit held, size_t in_use) {
+  for (size_t i = in_use; i < dataset.samples.size(); ++i) held.push_back(i);
+  return WithoutSampleIndices(dataset, held);
+}
+
+SplitResult PrepareSplit(const Dataset& dataset, const SampleSplit& held, size_t in_use) {
   SplitResult split;
   std::vector<char> is_held(dataset.samples.size(), 0);
   for (size_t i : held) is_held.at(i) = 1;
   for (size_t i = 0; i < dataset.samples.size(); ++i) {
+    if (i >= in_use && !is_held[i]) continue;  // set aside: in no split's training
     const Sample& s = dataset.samples[i];
     (is_held[i] ? split.holdout_x : split.train_x).push_back(s.x_atomic);
     (is_held[i] ? split.holdout_files : split.train_files).push_back(s.file);
   }
-  const Dataset training = WithoutSampleIndices(dataset, held);
+  const Dataset training = TrainingOf(dataset, held, in_use);
   WavelengthRange range;
   try {
     range = CommonRange(training);
@@ -162,12 +170,13 @@ SplitResult PrepareSplit(const Dataset& dataset, const SampleSplit& held) {
   }
   const double lo = range.lo_nm, hi = range.hi_nm;
   const double x_lo = dataset.samples.front().x_atomic;
-  const double x_hi = dataset.samples.back().x_atomic;
+  const double x_hi = dataset.samples[in_use - 1].x_atomic;
   for (double lambda : DrudeWavelengths(lo, hi)) {
     DrudeCurve curve;
     curve.lambda_nm = lambda;
     for (int i = 0; i <= 100; ++i) curve.x.push_back(x_lo + (x_hi - x_lo) * i / 100.0);
     for (size_t i = 0; i < dataset.samples.size(); ++i) {
+      if (i >= in_use && !is_held[i]) continue;
       const Sample& s = dataset.samples[i];
       double tau, mass;
       MeasuredTauMass(s.nk, s.x_atomic, lambda, dataset.system, &tau, &mass);
@@ -351,6 +360,7 @@ HoldoutResult MeasuredHoldout(const Dataset& dataset, size_t i, size_t s,
   h.path = sample.path;
   h.sample = static_cast<int>(i);
   h.replicate = SamplesAtComposition(dataset, sample.x_atomic).size() > 1;
+  h.excluded = sample.excluded;
   h.split = static_cast<int>(s);
   try {
     const Colour c =
@@ -364,7 +374,7 @@ HoldoutResult MeasuredHoldout(const Dataset& dataset, size_t i, size_t s,
 }
 
 // Adds every split and its held-out samples, with their measured colour, to the report.
-void AddSplits(const Dataset& dataset, const std::vector<SampleSplit>& splits,
+void AddSplits(const Dataset& dataset, const std::vector<SampleSplit>& splits, size_t in_use,
                const color::Colorimeter& colorimeter, const ValidationOptions& options,
                ValidationReport* report) {
   for (size_t s = 0; s < splits.size(); ++s) {
@@ -375,7 +385,7 @@ void AddSplits(const Dataset& dataset, const std::vector<SampleSplit>& splits,
       }
     }
     if (splits[s].empty()) throw Error("split " + std::to_string(s) + " holds out no sample");
-    report->splits.push_back(PrepareSplit(dataset, splits[s]));
+    report->splits.push_back(PrepareSplit(dataset, splits[s], in_use));
     SampleSplit held = splits[s];
     std::sort(held.begin(), held.end());
     held.erase(std::unique(held.begin(), held.end()), held.end());
@@ -392,8 +402,16 @@ ValidationReport ComputeValidation(const Dataset& dataset, const std::vector<Sam
                                    const ValidationOptions& options,
                                    const ProgressCallback& progress) {
   ValidationReport report = DescribeValidation(dataset, colorimeter, options);
+  // The samples set aside follow those in use, held out together in a split of their own.
+  const size_t in_use = dataset.samples.size();
+  Dataset all = dataset;
+  all.samples.insert(all.samples.end(), dataset.excluded.begin(), dataset.excluded.end());
+  std::vector<SampleSplit> all_splits = splits;
+  SampleSplit aside;
+  for (size_t i = in_use; i < all.samples.size(); ++i) aside.push_back(i);
+  if (!aside.empty()) all_splits.push_back(aside);
   // Held-out samples and their measured colour.
-  AddSplits(dataset, splits, colorimeter, options, &report);
+  AddSplits(all, all_splits, in_use, colorimeter, options, &report);
 
   // Every method on every split; a method's splits run in parallel (ParallelTasks), each
   // task building its model and scoring its own held-out samples, so nothing is shared.
@@ -416,7 +434,7 @@ ValidationReport ComputeValidation(const Dataset& dataset, const std::vector<Sam
           SplitResult& split = report.splits[s];
           std::unique_ptr<AlloyModel> model;
           try {
-            model = options.build(method, WithoutSampleIndices(dataset, splits[s]));
+            model = options.build(method, TrainingOf(all, all_splits[s], in_use));
           } catch (const Error& e) {
             errors[s] = e.what();
           }
@@ -429,7 +447,7 @@ ValidationReport ComputeValidation(const Dataset& dataset, const std::vector<Sam
             FillDrudeCurves(*model, method, dataset.system, &split.drude);
             for (size_t h : holdouts_of[s]) {
               HoldoutResult& holdout = report.holdouts[h];
-              const Sample& sample = dataset.samples[holdout.sample];
+              const Sample& sample = all.samples[holdout.sample];
               try {
                 holdout.results[method] = Evaluate(*model, sample, colorimeter, options, &holdout);
               } catch (const Error& e) {
@@ -475,6 +493,7 @@ RecoverySummary Recovery(const ValidationReport& report, const std::string& meth
   double sum = 0;
   for (const HoldoutResult& h : report.holdouts) {
     const auto it = h.results.find(method);
+    if (!h.excluded.empty()) continue;
     if (it == h.results.end() || !std::isfinite(it->second.x_recovered)) continue;
     const double error = std::abs(it->second.x_recovered - h.x_atomic);
     sum += 100 * error;
@@ -494,7 +513,7 @@ SigmaCoverage Coverage(const ValidationReport& report, const std::string& method
   std::vector<double> ratios;
   for (const HoldoutResult& h : report.holdouts) {
     const auto it = h.results.find(method);
-    if (it == h.results.end()) continue;
+    if (it == h.results.end() || !h.excluded.empty()) continue;
     const MethodResult& r = it->second;
     if (angle >= static_cast<int>(r.delta_e00_sigma.size())) continue;
     const double sigma = r.delta_e00_sigma[angle];

@@ -82,8 +82,13 @@ struct MethodResult {
 struct HoldoutResult {
   double x_atomic = 0, x_given = 0;
   std::string file, path;
-  int sample = 0;          // index in the data set's samples
+  // Index in the data set's samples followed by its set-aside ones (Dataset::excluded).
+  int sample = 0;
   bool replicate = false;  // another sample of the data set shares its composition
+  // Why the manifest sets it aside ("exclude"), empty for a sample in use: such a sample is
+  // held out of every split (its own split trains on all the samples in use) and left out
+  // of the summaries (Coverage, Recovery and the report's means).
+  std::string excluded;
   int split = 0;
   // Measured, on the metric wavelengths (those of the first method that could be
   // evaluated; every method trained on a split shares them).
@@ -185,7 +190,10 @@ SampleSplit SplitAtCompositions(const Dataset& dataset, const std::vector<double
 
 // Runs every method on every split. A method that fails on a split is recorded
 // there; a method that fails on every split (an unknown name) throws its first error
-// before the other methods' long work. Progress goes to `progress` (may be empty).
+// before the other methods' long work. Progress goes to `progress` (may be empty). The
+// samples the manifest sets aside (Dataset::excluded) are held out of every split and
+// scored in one more split, trained on every sample in use.
+
 ValidationReport ComputeValidation(const Dataset& dataset, const std::vector<SampleSplit>& splits,
                                    const color::Colorimeter& colorimeter,
                                    const ValidationOptions& options,

@@ -6,6 +6,9 @@ errors fell inside one and two of the model's own sigma (leave-one-out and every
 four-composition subset of the bundled sets, the ends kept)."""
 import argparse, datetime, itertools, json, os, platform, statistics, subprocess, sys, tempfile
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import suggest_table  # noqa: E402
+
 try:
     import alloycolor as ac
 except ImportError as e:
@@ -191,6 +194,9 @@ def main():
         r = pooled.get(m, [])
         if r:
             lines.append(f"| pooled | all | {m} | {coverage(r)} |")
+    # Where to measure next: suggest's rule against the widest gap and chance.
+    lines += [""] + suggest_table.section(a.program, a.threads,
+                                          lambda m: print(m, file=sys.stderr))
     write_markdown(a.out, lines, "accuracy")
 
 

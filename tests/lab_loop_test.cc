@@ -11,6 +11,7 @@
 #include <complex>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -290,6 +291,42 @@ TEST(Suggest, KeepsAwayFromSamplesInsideTheRangeAndPrintsColorsSigma) {
   ASSERT_EQ(gap.suggestions.size(), 1u);
   EXPECT_NEAR(gap.suggestions[0].x_atomic, 0.5 * (line->x_min() + line->x_max()), 1e-12);
   EXPECT_TRUE(std::isnan(gap.suggestions[0].sigma));
+}
+
+// sweep --sigma prints, per row, the one-sigma `color` gives at that composition.
+TEST(Sweep, TheSigmaColumnIsColorsOneSigma) {
+  const std::string dir = MakeTempDir();
+  const std::string model = dir + "/m.json";
+  ASSERT_EQ(RunProgram({"fit", "--data", DataDir() + "/Cu-Zn/dataset-werner-zn.json", "--method",
+                        "smooth", "--out", model, "--quiet"})
+                .status,
+            0);
+  const testing::RunResult sweep =
+      RunProgram({"sweep", "--model", model, "--steps", "5", "--sigma", "--quiet"});
+  ASSERT_EQ(sweep.status, 0) << sweep.err;
+  std::istringstream rows(sweep.out);
+  std::string line;
+  std::getline(rows, line);
+  EXPECT_EQ(line, "x,X,Y,Z,L,a,b,srgb8_r,srgb8_g,srgb8_b,sigma_de00");
+  int count = 0;
+  while (std::getline(rows, line)) {
+    const std::string x = line.substr(0, line.find(','));
+    const double sigma = std::stod(line.substr(line.rfind(',') + 1));
+    const auto colour =
+        nlohmann::json::parse(RunProgram({"color", "--model", model, "--x", x, "--json"}).out);
+    EXPECT_NEAR(sigma, colour["delta_e00_sigma"].get<double>(), 5e-5) << line;
+    ++count;
+  }
+  EXPECT_EQ(count, 5);
+  // A model without error bars: --sigma is refused, saying why.
+  nlohmann::json two = Manifest("Cu", "Zn", "weight_fraction_a",
+                                {{0.70, "Querry-Cu70Zn30.yml"}, {1.0, "Querry-Cu100.yml"}});
+  const std::string two_dir = DatasetOf("Cu-Zn", two);
+  const testing::RunResult refused =
+      RunProgram({"sweep", "--data", two_dir, "--steps", "3", "--sigma", "--quiet"});
+  EXPECT_EQ(refused.status, 2);
+  EXPECT_NE(refused.err.find("--sigma: no error bar: 2 compositions"), std::string::npos)
+      << refused.err;
 }
 
 }  // namespace

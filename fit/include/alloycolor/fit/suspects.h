@@ -25,8 +25,8 @@
 // held-out check is made on the fit without it (one bad sample bends the fold of its
 // neighbour), and its note says how the others' held-out error changes without it.
 //
-// The rule's false-alarm rate on honest scatter is measured by scripts/suspects_table.py
-// (docs/accuracy.md): the tail was set before that measurement, not tuned on it.
+// The rule's false-alarm rate on honest scatter is measured by scripts/suspects.sh
+// (docs/suspects.md) on series drawn from seeds the rule was not set on.
 #ifndef ALLOYCOLOR_FIT_SUSPECTS_H_
 #define ALLOYCOLOR_FIT_SUSPECTS_H_
 
@@ -44,7 +44,7 @@ namespace alloycolor::fit {
 // does): set first at one in two hundred, that tail flagged 3 of 281 honest samples of
 // freshly drawn series (scripts/suspects_table.py, seed 101), each 7 to 13 times its
 // one-sigma; the false-alarm rate of this tail is measured on other seeds
-// (docs/draws.md).
+// (docs/suspects.md).
 inline constexpr double kSuspectTail = 1e-4;
 
 // The samples of `dataset` that `model` (built on it by BuildModel, with its folds) finds

@@ -138,10 +138,15 @@ class Dataset:
     warnings = property(lambda self: list(self._core.warnings))
     precision = property(lambda self: dict(self._core.precision),
                          doc='{"n", "k"}: the standard deviations the manifest states for a '
-                             'measured n and k (0: not stated; the printed digits then set the '
-                             "error bars' floor)")
+                             'measured n and k (0 where not stated; a manifest stating none '
+                             "takes 0.01 each, a typical measurement's, as the error bars' "
+                             "floor)")
     x_atomic = property(lambda self: self._core.x_atomic,
                         doc="samples' compositions, sorted (repeated for replicates)")
+    excluded = property(lambda self: [dict(s, spectrum=Spectrum(s["spectrum"]))
+                                      for s in self._core.excluded],
+                        doc='the samples the manifest sets aside ("exclude"): as samples, '
+                            'with "excluded", the reason')
 
     @property
     def samples(self) -> list:
@@ -220,7 +225,40 @@ class Model:
     lambda_max_nm = property(lambda self: self._core.lambda_max_nm)
     warnings = property(lambda self: list(self._core.warnings))
     has_uncertainty = property(lambda self: self._core.has_uncertainty)
+    no_error_bar = property(lambda self: self._core.no_error_bar,
+                            doc='why the model has no error bar ("no error bar: 2 '
+                                'compositions ..."); "" where it has one')
     training_x = property(lambda self: self._core.training_x)
+    history = property(lambda self: self.to_json().get("history", []),
+                       doc="the model's lineage, oldest first: one dict per fit (date, method, "
+                           "the samples added, with the previous model's delta_e00, "
+                           "sigma_de00 and verdict there, removed and changed); "
+                           "docs/model-format.md")
+    suspect_samples = property(
+        lambda self: self.to_json()["fit"].get("suspect_samples", []),
+        doc="the samples the fit found out of line with the rest of the series: dicts with "
+            "file, x, check, figure, reason")
+    excluded_samples = property(
+        lambda self: self.to_json().get("excluded_samples", []),
+        doc="the samples the manifest set aside, each with its reason and the model's "
+            "delta_e00 and sigma_de00 on it (held out)")
+    parameter_curves = property(
+        lambda self: self.to_json()["parameters"].get("curves"),
+        doc="tau(x), m*(x), plasma energy and damping with their one-sigma, as "
+            "``alloycolor params --format json`` (None for a model file written before)")
+
+    def suggest(self, count: int = 1, rule: str = "largest-sigma", illuminant: str = "D65",
+                observer: int = 2) -> list:
+        """Where to measure next, as ``alloycolor suggest --json``: ``count`` compositions
+        (1-20) chosen jointly where a new sample would remove the most of the one-sigma
+        (rule "largest-sigma"; "widest-gap": the middle of the widest gap, also for a model
+        without error bars), each a dict with "x" (atomic fraction), "x_given" (the data
+        set's units), "sigma_de00" (the one-sigma there now, as :meth:`color` gives it),
+        "max_sigma_before"/"max_sigma_after" and "mean_sigma_before"/"mean_sigma_after" over
+        the composition range, and "rule"."""
+        return self._core._suggest(_whole("count", count, 1, 20), _text("rule", rule),
+                                   _text("illuminant", illuminant),
+                                   _observer("observer", observer))
 
     def parse_composition(self, text: str) -> float:
         """x_atomic from "0.75", "75at%", "75wt%" or "18k" (gold alloys)."""
@@ -390,15 +428,19 @@ class Model:
 
 
 def fit(dataset: Union[Dataset, str], method: str = "auto", *,
-        lambda_range_nm: Optional[Sequence[float]] = None,
+        lambda_range_nm: Optional[Sequence[float]] = None, refit: Optional[Model] = None,
         progress: Optional[Callable[[str], None]] = None, **options) -> Model:
     method = _text("method", method)
     _callable("progress", progress)
+    if refit is not None and not isinstance(refit, Model):
+        raise Error("refit: give the earlier Model (load_model(path)), not %s"
+                    % type(refit).__name__)
     given = _fit_options(options, lambda_range_nm)
     if not isinstance(dataset, Dataset):
         dataset = Dataset(dataset)
     try:
-        core = _core._fit(dataset._core, method, given, progress)
+        core = _core._fit(dataset._core, method, given, progress,
+                          None if refit is None else refit._core)
     except Error as e:
         if lambda_range_nm is None:
             raise

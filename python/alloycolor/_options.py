@@ -70,6 +70,7 @@ def fit_signature(dataset_type, model_type) -> inspect.Signature:
                         annotation=Optional[python_type]))
     params.append(P("lambda_range_nm", P.KEYWORD_ONLY, default=None,
                     annotation=Optional[Sequence[float]]))
+    params.append(P("refit", P.KEYWORD_ONLY, default=None, annotation=Optional[model_type]))
     params.append(P("progress", P.KEYWORD_ONLY, default=None,
                     annotation=Optional[Callable[[str], None]]))
     return inspect.Signature(params, return_annotation=model_type)
@@ -93,5 +94,13 @@ def fit_doc() -> str:
                                                    default, o["help"]))
     lines.append("""
     lambda_range_nm: (from, to, step) of the fit grid, for lambda_from_nm, lambda_to_nm and
-    lambda_step_nm together; progress: called with one-line messages.""")
+    lambda_step_nm together; progress: called with one-line messages.
+
+    refit: an earlier Model of the data set, as ``alloycolor fit --refit``: the new model's
+    ``history`` is the earlier one's and an entry for this fit, which gives for each sample
+    added since the earlier model that model's error there (``delta_e00`` at normal
+    incidence, D65, 2 degrees, ``reflectance_rms``), its one-sigma (``sigma_de00``) and the
+    verdict (within one sigma, within two, or beyond). Every fit checks the samples against
+    the rest of the series (``suspect_samples``) and scores those the manifest sets aside
+    (``excluded_samples``).""")
     return "".join(lines)

@@ -8,6 +8,27 @@
 
 namespace alloycolor::python {
 
+namespace {
+
+// [{"x_atomic", "x_given", "file", "path", "spectrum"}] (and "excluded": the reason, for a
+// sample the manifest sets aside).
+py::list SampleList(const std::vector<Sample>& samples) {
+  py::list out;
+  for (const Sample& s : samples) {
+    py::dict r;
+    r["x_atomic"] = s.x_atomic;
+    r["x_given"] = s.x_given;
+    r["file"] = s.file;
+    r["path"] = s.path;
+    r["spectrum"] = s.nk;
+    if (!s.excluded.empty()) r["excluded"] = s.excluded;
+    out.append(r);
+  }
+  return out;
+}
+
+}  // namespace
+
 SpectrumClass BindData(py::module_& m) {
   m.def(
       "_read_nk",
@@ -46,20 +67,8 @@ SpectrumClass BindData(py::module_& m) {
                                for (const Sample& s : d.samples) xs.push_back(s.x_atomic);
                                return ToArray(xs);
                              })
-      .def_property_readonly("samples",
-                             [](const Dataset& d) {
-                               py::list out;
-                               for (const Sample& s : d.samples) {
-                                 py::dict r;
-                                 r["x_atomic"] = s.x_atomic;
-                                 r["x_given"] = s.x_given;
-                                 r["file"] = s.file;
-                                 r["path"] = s.path;
-                                 r["spectrum"] = s.nk;
-                                 out.append(r);
-                               }
-                               return out;
-                             })
+      .def_property_readonly("samples", [](const Dataset& d) { return SampleList(d.samples); })
+      .def_property_readonly("excluded", [](const Dataset& d) { return SampleList(d.excluded); })
       .def("parse_composition",
            [](const Dataset& d, const std::string& text) {
              return ParseComposition(text, d.system);

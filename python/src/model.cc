@@ -6,8 +6,12 @@
 #include <complex>
 #include <utility>
 
+#include "alloycolor/color/suggest.h"
+#include "alloycolor/core/composition.h"
 #include "alloycolor/core/output.h"
 #include "alloycolor/core/permittivity.h"
+#include "alloycolor/core/text.h"
+#include "alloycolor/fit/lineage.h"
 #include "alloycolor/fit/methods.h"
 #include "alloycolor/model/registry.h"
 #include "bindings.h"
@@ -43,7 +47,7 @@ py::array_t<std::complex<double>> ModelOptics(const AlloyModel& model, const Arr
 
 ModelClass BindModel(py::module_& m) {
   m.def("_fit", [](const Dataset& dataset, const std::string& method, const py::dict& options,
-                   const py::object& progress) {
+                   const py::object& progress, const std::shared_ptr<AlloyModel>& previous) {
     fit::FitSettings settings;
     ThreadBudget threads;  // every core, as the program's default
     settings.threads = &threads;
@@ -51,10 +55,13 @@ ModelClass BindModel(py::module_& m) {
     settings.progress = PythonProgress(progress);
     // As `alloycolor fit`: auto and the sigma calibration score colour under D65, 2 degrees.
     settings.colorimeter = &GetColorimeter("D65", 2);
+    // As `alloycolor fit` (--refit): the samples checked, the lineage recorded.
+    const fit::FitRecord record{previous.get(), NowUtcIso8601()};
+    settings.start = previous && previous->method() == method ? previous.get() : nullptr;
     std::unique_ptr<AlloyModel> model;
     {
       py::gil_scoped_release release;
-      model = fit::BuildModel(method, dataset, settings);
+      model = fit::FitDataSet(method, dataset, settings, record);
     }
     return std::shared_ptr<AlloyModel>(std::move(model));
   });
@@ -72,6 +79,38 @@ ModelClass BindModel(py::module_& m) {
       .def_property_readonly("lambda_max_nm", &AlloyModel::lambda_max_nm)
       .def_property_readonly("warnings", &AlloyModel::warnings)
       .def_property_readonly("has_uncertainty", &AlloyModel::HasUncertainty)
+      .def_property_readonly("no_error_bar", &AlloyModel::NoErrorBarReason)
+      .def("_suggest",
+           [](const AlloyModel& a, int count, const std::string& rule,
+              const std::string& illuminant, int observer) {
+             color::SuggestOptions options;
+             options.count = count;
+             options.rule = color::ParseSuggestRule(rule);
+             const color::Colorimeter& cm = GetColorimeter(illuminant, observer);
+             color::SuggestResult r;
+             {
+               py::gil_scoped_release release;
+               ThreadBudget threads;
+               options.threads = &threads;
+               r = color::SuggestCompositions(cm, a, options);
+             }
+             py::list out;
+             for (const color::Suggestion& s : r.suggestions) {
+               py::dict d;
+               d["x"] = s.x_atomic;
+               d["x_given"] = a.composition() == "weight_fraction_a"
+                                  ? WeightFromAtomicFraction(s.x_atomic, a.system())
+                                  : s.x_atomic;
+               d[r.metric == "relative_eps" ? "sigma_relative_eps" : "sigma_de00"] = s.sigma;
+               d["max_sigma_before"] = s.max_sigma_before;
+               d["max_sigma_after"] = s.max_sigma_after;
+               d["mean_sigma_before"] = s.mean_sigma_before;
+               d["mean_sigma_after"] = s.mean_sigma_after;
+               d["rule"] = r.rule;
+               out.append(d);
+             }
+             return out;
+           })
       .def_property_readonly("training_x",
                              [](const AlloyModel& a) {
                                std::vector<double> xs;

@@ -280,6 +280,10 @@ class ExplorePages : public ::testing::Test {
         << hash << "\n"
         << ReadText(*dir_ + "/chromium.log");
     EXPECT_NE(dom.find("data-bad-parameters=\"\""), std::string::npos) << hash;
+    // The composition chart is drawn, with its band where the model has error bars and the
+    // three places to measure next.
+    EXPECT_NE(dom.find("data-suggestions=\"3\""), std::string::npos) << hash;
+    EXPECT_EQ(dom.find("class=\"band\"") != std::string::npos, sigma) << hash;
     color::Lab labs[2];
     for (int m = 0; m < 2; ++m) {
       const std::string key = m == 0 ? "a" : "b";
@@ -401,6 +405,17 @@ TEST_F(ExplorePages, WritesOneSelfContainedPageOfAFewMegabytes) {
   EXPECT_EQ(doc["training"].size(), 11u);
   EXPECT_EQ(doc["samples"].size(), 11u);
   EXPECT_TRUE(doc["samples"][0]["measured"].get<bool>());
+  // Where to measure next, for the composition chart: three compositions inside the range,
+  // none within 0.02 of a training sample.
+  ASSERT_EQ(doc["suggestions"].size(), 3u);
+  for (const auto& s : doc["suggestions"]) {
+    const double x = s["x"].get<double>();
+    EXPECT_GE(x, 0.0);
+    EXPECT_LE(x, 1.0);
+    for (const auto& t : doc["training"])
+      EXPECT_GE(std::abs(x - t["x"].get<double>()), 0.02 - 1e-12);
+  }
+  EXPECT_TRUE(doc["suspects"].is_array());
 }
 
 TEST_F(ExplorePages, BadInputGivesOneLineAndNoPage) {

@@ -282,6 +282,60 @@ function plot(svgId, label, key, curves) {
   }
   svg.replaceChildren(...nodes);
 }
+// The colour across composition (the table's, at the light source and angle shown), its
+// one-sigma beneath as a band, the training samples as ticks (suspects red), where to
+// measure next as green triangles (the library's suggestions), and A's composition.
+function drawCompositionChart(a) {
+  const W = 1000, L = 50, R = 12, STRIP = 40, TOP = 6, PLOT = 86, BASE = TOP + STRIP + 8 + PLOT;
+  const N = 200, sx = (x) => L + (x - X_LO) / (X_HI - X_LO || 1) * (W - L - R);
+  const nodes = [];
+  const xs = Array.from({ length: N + 1 }, (_, i) => X_LO + (X_HI - X_LO) * i / N);
+  const colours = xs.map((x) => metal(x));
+  for (let i = 0; i <= N; i++) {
+    const x0 = i === 0 ? sx(xs[0]) : (sx(xs[i - 1]) + sx(xs[i])) / 2;
+    const x1 = i === N ? sx(xs[N]) : (sx(xs[i]) + sx(xs[i + 1])) / 2;
+    const r = svgEl("rect", { x: x0.toFixed(2), y: TOP, width: (x1 - x0 + 0.4).toFixed(2), height: STRIP });
+    r.style.fill = colours[i].hex;
+    nodes.push(r);
+  }
+  const sigmas = colours.map((m) => m.sigma);
+  if (sigmas.every((v) => v !== null)) {
+    const top = Math.max(...sigmas) * 1.1 || 1;
+    const sy = (v) => BASE - v / top * PLOT;
+    const pts = [sx(xs[0]).toFixed(1) + "," + BASE]
+      .concat(xs.map((x, i) => sx(x).toFixed(1) + "," + sy(sigmas[i]).toFixed(1)), [sx(xs[N]).toFixed(1) + "," + BASE]);
+    nodes.push(svgEl("polygon", { class: "band", points: pts.join(" ") }, svgEl("title", {}, "one-sigma ΔE00")));
+    for (const t of [0, top / 2.2, top / 1.1]) {
+      nodes.push(svgEl("text", { x: L - 5, y: sy(t) + 4, "text-anchor": "end" }, t.toPrecision(2)));
+    }
+  } else {
+    nodes.push(svgEl("text", { x: (L + W - R) / 2, y: BASE - PLOT / 2, "text-anchor": "middle" }, D.no_error_bar));
+  }
+  nodes.push(svgEl("line", { class: "axis", x1: L, x2: W - R, y1: BASE, y2: BASE }));
+  for (const s of D.training) {
+    nodes.push(svgEl("line", { class: "sample-tick", x1: sx(s.x), x2: sx(s.x), y1: TOP + STRIP, y2: BASE },
+                     svgEl("title", {}, "measured: " + s.file)));
+  }
+  for (const s of D.suspects) {
+    nodes.push(svgEl("circle", { class: "suspect", cx: sx(s.x), cy: BASE, r: 6 }, svgEl("title", {}, "suspect: " + s.reason)));
+  }
+  D.suggestions.forEach((s, k) => {
+    const x = sx(s.x);
+    nodes.push(svgEl("polygon", { class: "suggestion", points: `${x},${BASE + 2} ${x - 7},${BASE + 14} ${x + 7},${BASE + 14}` },
+                     svgEl("title", {}, `measure next (${k + 1}): ${I.describeComposition(s.x, SYS).main}`)),
+               svgEl("text", { x, y: BASE + 26, "text-anchor": "middle" }, String(k + 1)));
+  });
+  nodes.push(svgEl("line", { class: "now", x1: sx(a.x), x2: sx(a.x), y1: TOP, y2: BASE }));
+  $("composition-chart").replaceChildren(...nodes);
+  $("composition-chart").dataset.suggestions = D.suggestions.length;
+  $("chart-legend").replaceChildren(
+    `The colour of the polished metal across composition (${ILLS[state.ill].name}, ${fixed(state.angle, 1)}°) and beneath it ` +
+    (D.has_sigma ? "its one-sigma ΔE00 as a band" : "no band: " + D.no_error_bar) +
+    "; ticks: the training samples" + (D.suspects.length ? ", red: suspect samples" : "") +
+    (D.suggestions.length ? "; green triangles: where to measure next, " +
+      D.suggestions.map((s) => I.describeComposition(s.x, SYS).main).join(", then ") : "") +
+    "; dashed: A.");
+}
 function drawPlots(a, b) {
   const sa = spectrumAt(a.x), sb = spectrumAt(b.x);
   const labelA = "A " + I.describeComposition(a.x, SYS).main, labelB = "B " + I.describeComposition(b.x, SYS).main;
@@ -337,6 +391,7 @@ function render() {
   if (document.activeElement !== $("angle-value")) $("angle-value").value = state.angle;
   $("angle").value = state.angle;
   drawPlots(a, b);
+  drawCompositionChart(a);
   document.body.dataset.ready = "true";
 }
 function update() { if (!pending) { pending = true; requestAnimationFrame(render); } }

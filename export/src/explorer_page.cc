@@ -11,9 +11,11 @@
 #include <string_view>
 
 #include "alloycolor/color/material_color.h"
+#include "alloycolor/color/suggest.h"
 #include "alloycolor/core/composition.h"
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/markup.h"
+#include "alloycolor/core/parallel.h"
 #include "alloycolor/render/composition_table.h"
 #include "alloycolor/render/renderer.h"
 #include "alloycolor/render/shading.h"
@@ -51,6 +53,9 @@ struct PageInputs {
   render::NormalMap sphere, ring;
   std::vector<EnvironmentMap> environment_maps;
   std::string generator;
+  // Where to measure next (color/suggest.h, under the first illuminant) and the samples the
+  // fit found suspect, marked on the composition chart.
+  std::vector<color::Suggestion> suggestions;
 };
 
 using nlohmann::json;
@@ -270,6 +275,16 @@ std::string PageHtml(const PageInputs& in) {
   for (const TrainingSample& s : model.training_samples()) {
     training.push_back({{"x", s.x_atomic}, {"file", s.file}});
   }
+  json suspects = json::array();
+  for (const SampleNote& n : model.suspect_samples()) {
+    suspects.push_back({{"x", n.x_atomic}, {"file", n.file}, {"reason", n.reason}});
+  }
+  json suggestions = json::array();
+  for (const color::Suggestion& s : in.suggestions) {
+    json entry = {{"x", s.x_atomic}};
+    if (std::isfinite(s.sigma)) entry["sigma"] = s.sigma;
+    suggestions.push_back(entry);
+  }
   json samples = json::array();
   for (const ExploreSample& s : in.samples) {
     samples.push_back({{"x", s.x_atomic},
@@ -294,6 +309,9 @@ std::string PageHtml(const PageInputs& in) {
                      {"x_range", {model.x_min(), model.x_max()}},
                      {"training", training},
                      {"has_sigma", model.HasUncertainty()},
+                     {"no_error_bar", model.NoErrorBarReason()},
+                     {"suspects", suspects},
+                     {"suggestions", suggestions},
                      {"srgb_matrix", SRGBMatrixJson()},
                      {"table", TableJson(*in.table)},
                      {"finishes", in.finish_names},
@@ -379,6 +397,11 @@ ExplorerPage BuildExplorerPage(const AlloyModel& model,
          render::LatLongRadiance(render::Lighting::kStudio, r, width, width / 2, o.threads)});
   }
   in.generator = std::string("alloycolor ") + ALLOYCOLOR_VERSION;
+  color::SuggestOptions suggest;
+  suggest.count = 3;
+  ThreadBudget threads(o.threads);
+  suggest.threads = &threads;
+  in.suggestions = color::SuggestCompositions(colorimeters.front(), model, suggest).suggestions;
 
   ExplorerPage page;
   page.html = PageHtml(in);

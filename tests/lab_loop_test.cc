@@ -293,6 +293,28 @@ TEST(Suggest, KeepsAwayFromSamplesInsideTheRangeAndPrintsColorsSigma) {
   EXPECT_TRUE(std::isnan(gap.suggestions[0].sigma));
 }
 
+// The model file's new fields are read back as written, and a damaged one is named.
+TEST(ModelFile, HistoryNotesAndCurvesRoundTripAndAreChecked) {
+  const Dataset dataset = LoadDataset(DataDir() + "/Cu-Zn");
+  const auto model = FitOf(dataset, "eps-linear");
+  const nlohmann::json doc = model->ToJson();
+  const auto back = ModelFromJson(doc, "m.json");
+  EXPECT_EQ(back->ToJson(), doc);
+  ASSERT_EQ(back->history().size(), 1u);
+  EXPECT_EQ(back->history()[0].added.size(), dataset.samples.size());
+  EXPECT_EQ(back->suspect_samples().size(), 1u);
+  EXPECT_TRUE(doc["parameters"]["curves"]["rows"].is_array());
+  nlohmann::json bad = doc;
+  bad["history"][0]["samples"] = 2.5;
+  testing::ExpectModelFileError(bad, "history[0].samples");
+  bad = doc;
+  bad["history"][0]["added"][1] = "Querry-Cu70Zn30.yml";
+  testing::ExpectModelFileError(bad, "history[0].added[1]");
+  bad = doc;
+  bad["fit"]["suspect_samples"][0].erase("reason");
+  testing::ExpectModelFileError(bad, "fit.suspect_samples[0]");
+}
+
 // sweep --sigma prints, per row, the one-sigma `color` gives at that composition.
 TEST(Sweep, TheSigmaColumnIsColorsOneSigma) {
   const std::string dir = MakeTempDir();

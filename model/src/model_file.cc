@@ -361,14 +361,21 @@ double NumberOrNaN(const nlohmann::json& object, const char* key, const std::str
   return Number(object.at(key), where + "." + key);
 }
 
-// A list of sample notes (fit.suspect_samples, excluded_samples).
-std::vector<SampleNote> ReadSampleNotes(const nlohmann::json& list, const std::string& where) {
+// Calls read(object, "where[i]") for each element of the array `list`, an object each.
+template <typename F>
+void ForEachObject(const nlohmann::json& list, const std::string& where, F read) {
   if (!list.is_array()) throw Error(where + ": expected an array");
-  std::vector<SampleNote> notes;
   for (size_t i = 0; i < list.size(); ++i) {
     const std::string at = where + "[" + std::to_string(i) + "]";
-    const nlohmann::json& row = list[i];
-    if (!row.is_object()) throw Error(at + ": expected an object");
+    if (!list[i].is_object()) throw Error(at + ": expected an object");
+    read(list[i], at);
+  }
+}
+
+// A list of sample notes (fit.suspect_samples, excluded_samples).
+std::vector<SampleNote> ReadSampleNotes(const nlohmann::json& list, const std::string& where) {
+  std::vector<SampleNote> notes;
+  ForEachObject(list, where, [&notes](const nlohmann::json& row, const std::string& at) {
     SampleNote n;
     n.file = String(Field(row, "file", at), at + ".file");
     n.x_atomic = Number(Field(row, "x", at), at + ".x");
@@ -383,18 +390,14 @@ std::vector<SampleNote> ReadSampleNotes(const nlohmann::json& list, const std::s
     n.sigma_de00 = NumberOrNaN(row, "sigma_de00", at);
     n.reflectance_rms = NumberOrNaN(row, "reflectance_rms", at);
     notes.push_back(std::move(n));
-  }
+  });
   return notes;
 }
 
 // The model file's "history": the model's lineage (HistoryEntry).
 std::vector<HistoryEntry> ReadHistory(const nlohmann::json& list) {
-  if (!list.is_array()) throw Error("history: expected an array");
   std::vector<HistoryEntry> history;
-  for (size_t i = 0; i < list.size(); ++i) {
-    const std::string at = "history[" + std::to_string(i) + "]";
-    const nlohmann::json& row = list[i];
-    if (!row.is_object()) throw Error(at + ": expected an object");
+  ForEachObject(list, "history", [&history](const nlohmann::json& row, const std::string& at) {
     HistoryEntry h;
     const nlohmann::json& date = Field(row, "date", at);
     h.date = date.is_null() ? std::string() : String(date, at + ".date");
@@ -407,39 +410,37 @@ std::vector<HistoryEntry> ReadHistory(const nlohmann::json& list) {
       throw Error(at + ".samples: expected a whole number");
     }
     h.samples = static_cast<int>(samples);
-    const nlohmann::json& added = Field(row, "added", at);
-    if (!added.is_array()) throw Error(at + ".added: expected an array");
-    for (size_t k = 0; k < added.size(); ++k) {
-      const std::string a_at = at + ".added[" + std::to_string(k) + "]";
-      const nlohmann::json& a = added[k];
-      if (!a.is_object()) throw Error(a_at + ": expected an object");
-      AddedSample s;
-      s.file = String(Field(a, "file", a_at), a_at + ".file");
-      s.x_atomic = Number(Field(a, "x", a_at), a_at + ".x");
-      s.x_given = a.contains("x_given") ? Number(a.at("x_given"), a_at + ".x_given") : s.x_atomic;
-      if (a.contains("checksum")) s.checksum = String(a.at("checksum"), a_at + ".checksum");
-      s.delta_e00 = NumberOrNaN(a, "delta_e00", a_at);
-      s.sigma_de00 = NumberOrNaN(a, "sigma_de00", a_at);
-      s.reflectance_rms = NumberOrNaN(a, "reflectance_rms", a_at);
-      if (a.contains("verdict")) s.verdict = String(a.at("verdict"), a_at + ".verdict");
-      h.added.push_back(std::move(s));
-    }
+    ForEachObject(Field(row, "added", at), at + ".added",
+                  [&h](const nlohmann::json& a, const std::string& a_at) {
+                    AddedSample s;
+                    s.file = String(Field(a, "file", a_at), a_at + ".file");
+                    s.x_atomic = Number(Field(a, "x", a_at), a_at + ".x");
+                    s.x_given = a.contains("x_given") ? Number(a.at("x_given"), a_at + ".x_given")
+                                                      : s.x_atomic;
+                    if (a.contains("checksum"))
+                      s.checksum = String(a.at("checksum"), a_at + ".checksum");
+                    s.delta_e00 = NumberOrNaN(a, "delta_e00", a_at);
+                    s.sigma_de00 = NumberOrNaN(a, "sigma_de00", a_at);
+                    s.reflectance_rms = NumberOrNaN(a, "reflectance_rms", a_at);
+                    if (a.contains("verdict"))
+                      s.verdict = String(a.at("verdict"), a_at + ".verdict");
+                    h.added.push_back(std::move(s));
+                  });
     for (const auto& [key, out] : {std::pair{"removed", &h.removed}, {"changed", &h.changed}}) {
-      const std::string l_at = at + "." + key;
-      const nlohmann::json& l = Field(row, key, at);
-      if (!l.is_array()) throw Error(l_at + ": expected an array");
-      for (size_t k = 0; k < l.size(); ++k) {
-        const std::string t_at = l_at + "[" + std::to_string(k) + "]";
-        TrainingSample t{};
-        t.file = String(Field(l[k], "file", t_at), t_at + ".file");
-        t.x_atomic = Number(Field(l[k], "x", t_at), t_at + ".x");
-        t.x_given = t.x_atomic;
-        if (l[k].contains("checksum")) t.checksum = String(l[k].at("checksum"), t_at + ".checksum");
-        out->push_back(std::move(t));
-      }
+      ForEachObject(Field(row, key, at), at + "." + key,
+                    [out = out](const nlohmann::json& l, const std::string& t_at) {
+                      TrainingSample t{};
+                      t.file = String(Field(l, "file", t_at), t_at + ".file");
+                      t.x_atomic = Number(Field(l, "x", t_at), t_at + ".x");
+                      t.x_given = t.x_atomic;
+                      if (l.contains("checksum")) {
+                        t.checksum = String(l.at("checksum"), t_at + ".checksum");
+                      }
+                      out->push_back(std::move(t));
+                    });
     }
     history.push_back(std::move(h));
-  }
+  });
   return history;
 }
 

@@ -206,12 +206,10 @@ void Run(const ValidateOptions& o) {
     };
   }
   if (o.verbose) options.details = progress;
-  ValidationReport report =
+  // The report opens with the whole data set as a fit of it sees it.
+  options.fit_whole = fit::WholeDataSetFitter(d65, &threads);
+  const ValidationReport report =
       validate::ComputeValidation(dataset, splits, colorimeter, options, progress);
-  // The opening verdict: the whole data set as a fit of it would see it.
-  Report(progress, "validate: the whole data set (auto, its samples checked, where to measure)");
-  report.whole =
-      validate::DescribeWholeDataSet(dataset, d65, fit::WholeDataSetFitter(d65, &threads));
   // Both files are rendered before either is written, and written as a set.
   const nlohmann::json json = ValidationJson(report);
   const std::string json_text = JsonText(json, 1) + "\n";

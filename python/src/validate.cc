@@ -5,6 +5,7 @@
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/output.h"
 #include "alloycolor/core/setting.h"
+#include "alloycolor/fit/lineage.h"
 #include "alloycolor/fit/methods.h"
 #include "alloycolor/model/registry.h"
 #include "alloycolor/validate/report.h"
@@ -40,6 +41,7 @@ void BindValidate(py::module_& m) {
           const color::Colorimeter& d65 = GetColorimeter("D65", 2);
           ThreadBudget threads;  // every core, as the program's default
           options.build = fit::SharedFitBuilder(d65, &threads);
+          options.fit_whole = fit::WholeDataSetFitter(d65, &threads);  // the report's opening
           options.threads = &threads;
           options.methods = methods;
           options.angles_deg = angles_deg;

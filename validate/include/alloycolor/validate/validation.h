@@ -59,6 +59,9 @@ struct ValidationOptions {
   // A line per split done (may be empty); the progress callback gets a line per method
   // and the splits that failed.
   ProgressCallback details;
+  // The model of the whole data set the report opens with (ValidationReport::whole,
+  // DescribeWholeDataSet): the face's fit::WholeDataSetFitter; empty: not described.
+  std::function<std::unique_ptr<AlloyModel>(const Dataset&)> fit_whole;
 };
 
 // What one method predicts for one held-out sample.
@@ -160,7 +163,7 @@ struct ValidationReport {
   std::vector<std::string> dataset_warnings;
   std::vector<SplitResult> splits;
   std::vector<HoldoutResult> holdouts;
-  WholeDataSet whole;  // not described unless the face asks (DescribeWholeDataSet)
+  WholeDataSet whole;  // described where ValidationOptions::fit_whole is given
 };
 
 // Builds the model of the whole data set with `fit_whole` (the face's: fit::FitDataSet with

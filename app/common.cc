@@ -134,11 +134,7 @@ color::Colorimeter LoadColorimeter(const std::string& illuminant, int observer_d
   const std::string root = DataRoot();
   color::Colorimeter colorimeter = color::Colorimeter::Load(root, illuminant, observer_deg);
   // The colour tables read are inputs too: note the folder's files.
-  std::error_code ec;
-  for (fs::directory_iterator it(fs::path(root) / "cie", ec), end; !ec && it != end;
-       it.increment(ec)) {
-    if (it->is_regular_file(ec)) NoteInput(it->path().string());
-  }
+  ProgramGuard().NoteFolder((fs::path(root) / "cie").string());
   return colorimeter;
 }
 

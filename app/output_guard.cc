@@ -80,13 +80,7 @@ void NoteInput(const std::string& path) {
   if (!path.empty()) ProgramGuard().NoteInput(path);
 }
 
-void NoteInputs(const Dataset& dataset) {
-  NoteInput(dataset.manifest_path);
-  for (const Sample& sample : dataset.samples) {
-    NoteInput(sample.path);
-    NoteInput(sample.k_path);
-  }
-}
+void NoteInputs(const Dataset& dataset) { ProgramGuard().NoteInputs(dataset); }
 
 void CheckOutputPath(const std::string& path) {
   alloycolor::CheckOutputPath(path, &ProgramGuard());

@@ -39,7 +39,7 @@ OutputGuard& ProgramGuard();
 
 // Notes an input file of the running command.
 void NoteInput(const std::string& path);
-// Notes a data set's manifest and every sample file it names.
+// Notes a data set's manifest and every sample file it names (OutputGuard::NoteInputs).
 void NoteInputs(const Dataset& dataset);
 
 // Throws Error when `path` cannot be an output of this command (an input, a symlink, a

@@ -21,6 +21,7 @@
 #include <utility>
 #include <vector>
 
+#include "alloycolor/core/dataset.h"
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/io.h"
 #include "alloycolor/core/text.h"
@@ -60,6 +61,24 @@ void OutputGuard::NoteInput(const std::string& path) {
   if (stat(path.c_str(), &info) != 0) return;
   std::lock_guard<std::mutex> lock(inputs_->mutex);
   inputs_->by_id.emplace(FileId{info.st_dev, info.st_ino}, path);
+}
+
+void OutputGuard::NoteInputs(const Dataset& dataset) {
+  NoteInput(dataset.manifest_path);
+  for (const std::vector<Sample>* samples : {&dataset.samples, &dataset.excluded}) {
+    for (const Sample& sample : *samples) {
+      NoteInput(sample.path);
+      if (!sample.k_path.empty()) NoteInput(sample.k_path);
+    }
+  }
+}
+
+void OutputGuard::NoteFolder(const std::string& folder) {
+  std::error_code ec;
+  for (std::filesystem::directory_iterator it(folder, ec), end; !ec && it != end;
+       it.increment(ec)) {
+    if (it->is_regular_file(ec)) NoteInput(it->path().string());
+  }
 }
 
 void OutputGuard::CheckNotInput(const std::string& path, unsigned long long device,

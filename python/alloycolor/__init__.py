@@ -30,8 +30,9 @@ import numpy as np
 from . import _alloycolor as _core
 from . import _paths
 from ._alloycolor import Error, illuminants
-from ._args import (_callable, _columns_text, _export_args, _flag, _holds_bool, _observer, _path,
-                    _real, _real_array, _render_args, _text, _whole)
+from ._args import (_broadcast_x, _callable, _columns_text, _export_args, _flag, _holds_bool,
+                    _observer, _output_guard, _path, _real, _real_array, _render_args, _text,
+                    _whole)
 from ._options import fit_doc as _fit_doc, fit_options as _fit_options
 from ._options import fit_signature as _fit_signature
 
@@ -99,7 +100,11 @@ class Spectrum:
                scene_dir: Union[None, str, os.PathLike] = None, roughness: float = 0.0) -> dict:
         """Writes exactly the files ``alloycolor export --nk FILE`` writes; see
         :meth:`Model.export`."""
-        return self._core._export(*_export_args(prefix, format, scene_dir, roughness))
+        return self._core._export(*_export_args(prefix, format, scene_dir, roughness),
+                                  _output_guard(self))
+
+    def _note_inputs(self, guard) -> None:
+        guard.note(self.source)
 
     def __repr__(self):
         return "Spectrum(%r, %d wavelengths, %g-%g nm)" % (
@@ -181,6 +186,9 @@ class Dataset:
         """Fits a model; see :func:`alloycolor.fit`."""
         return fit(self, method, **options)
 
+    def _note_inputs(self, guard) -> None:
+        guard.note_dataset(self._core)
+
     def __len__(self):
         return len(self.x_atomic)
 
@@ -188,33 +196,23 @@ class Dataset:
         return "Dataset(%r, %s, %d samples)" % (self.name, self.system, len(self))
 
 
-def _broadcast_x(model, x) -> np.ndarray:
-    if isinstance(x, str):
-        return np.asarray(model.parse_composition(x), dtype=float)
-    arr = np.asarray(x)
-    if arr.dtype.kind in "US":
-        return np.vectorize(model.parse_composition, otypes=[float])(arr)
-    if arr.dtype.kind == "b" or _holds_bool(x):
-        raise Error("x: a composition is an atomic fraction (a real number or a string such "
-                    "as \"75wt%\"), not a boolean")
-    if arr.dtype.kind == "c":
-        raise Error("x: a composition is an atomic fraction, a real number, not complex")
-    if arr.dtype.kind not in "iuf":
-        raise Error("x: %r is not a composition (a number in [0, 1] or a string such as "
-                    "\"75wt%%\")" % (x,))
-    return np.asarray(arr, dtype=float)
-
-
 class Model:
     """A fitted or loaded model of permittivity eps(lambda, x). Evaluate with :meth:`nk`,
     :meth:`permittivity` and :meth:`color`; save with :meth:`save`."""
 
     def __init__(self, core, origin: str = "built in Python", source: str = "built in Python",
-                 data: Optional["Dataset"] = None):
+                 data: Optional["Dataset"] = None, inputs: tuple = ()):
         self._core = core
         self._origin = origin  # how export describes the model: "from m.json", ...
         self._source = source  # how the explorer page names it, as `alloycolor explore`
         self._data = data      # the data set it was fitted to (explore draws its spectra)
+        # What it was made from, which no output may replace: the file it was loaded from,
+        # or the data set it was fitted to and the model it refitted.
+        self._inputs = inputs
+
+    def _note_inputs(self, guard) -> None:
+        for source in self._inputs:
+            _output_guard(source, guard=guard)
 
     method = property(lambda self: self._core.method)
     system = property(lambda self: self._core.system)
@@ -338,8 +336,10 @@ class Model:
         return {key: value.reshape(xs.shape) for key, value in out.items()}
 
     def save(self, path: Union[str, os.PathLike]) -> None:
-        """Writes the versioned JSON model file (atomically: all or nothing)."""
-        self._core.save(_path("path", path))
+        """Writes the versioned JSON model file (atomically: all or nothing). Refuses to
+        replace one of the model's inputs (the file it was loaded from, its data set's files,
+        the model it refitted), as ``alloycolor fit`` refuses ``--out`` there."""
+        self._core._save(_path("path", path), _output_guard(self))
 
     def to_json(self) -> dict:
         """The model file's content as Python objects."""
@@ -372,7 +372,7 @@ class Model:
         xv = float(_broadcast_x(self, x))
         self._core._write_spd(xv, self._material(xv) if material is None
                               else _text("material", material), _path("eta_path", eta_path),
-                              _path("k_path", k_path))
+                              _path("k_path", k_path), _output_guard(self))
 
     def export(self, x, prefix: Union[str, os.PathLike], format: str = "all",
                scene_dir: Union[None, str, os.PathLike] = None, roughness: float = 0.0) -> dict:
@@ -388,7 +388,8 @@ class Model:
         fitted number and error, "format", "files" (the paths written) and "notes"."""
         xv = float(_broadcast_x(self, x))
         return self._core._export(xv, self._origin, *_export_args(prefix, format, scene_dir,
-                                                                  roughness))
+                                                                  roughness),
+                                  _output_guard(self))
 
     def explore(self, path: Union[str, os.PathLike], data: Union[None, "Dataset", str] = None,
                 illuminants: Union[str, Sequence[str]] = ("A", "D50", "D65"), observer: int = 2,
@@ -416,7 +417,8 @@ class Model:
             _path("path", path), names, _observer("observer", observer), rough,
             _whole("size", size, -2**31, 2**31 - 1), _real("tolerance", tolerance),
             _whole("threads", threads, -2**31, 2**31 - 1), self._source,
-            None if data is None else data._core, "" if data is None else data._given)
+            None if data is None else data._core, "" if data is None else data._given,
+            _output_guard(self, data))
 
     def _material(self, x: float) -> str:
         return self._core._description(x, self._origin)  # as the export files say
@@ -448,7 +450,7 @@ def fit(dataset: Union[Dataset, str], method: str = "auto", *,
         message = str(e).replace("lambda_from_nm, lambda_to_nm: ", "lambda_range_nm: ")
         raise Error(message.replace("lambda_step_nm: ", "lambda_range_nm: ")) from None
     return Model(core, "built from data " + dataset._given,
-                 "data %s, %s fit" % (dataset._given, core.method), dataset)
+                 "data %s, %s fit" % (dataset._given, core.method), dataset, (dataset, refit))
 
 
 fit.__signature__ = _fit_signature(Dataset, Model)
@@ -458,7 +460,7 @@ fit.__doc__ = _fit_doc()
 def load_model(path: Union[str, os.PathLike]) -> Model:
     """Reads a model file written by ``alloycolor fit --out`` or :meth:`Model.save`."""
     path = _path("path", path)
-    return Model(_core._load_model(path), "from " + path, path)
+    return Model(_core._load_model(path), "from " + path, path, inputs=(os.path.abspath(path),))
 
 
 _COLOR_KEYS = ("xyz", "lab", "linear_srgb", "srgb8", "paper_rgb")
@@ -574,4 +576,4 @@ def validate(dataset: Union[Dataset, str], methods: Union[None, str, Sequence[st
                            _text("illuminant", illuminant), _observer("observer", observer),
                            "" if html is None else _path("html", html),
                            "" if json is None else _path("json", json),
-                           _callable("progress", progress))
+                           _callable("progress", progress), _output_guard(dataset))

@@ -107,3 +107,34 @@ def _export_args(prefix, format, scene_dir, roughness) -> tuple:
     """The compiled export's arguments after the material's own."""
     return (_path("prefix", prefix), _text("format", format),
             "" if scene_dir is None else _path("scene_dir", scene_dir), _real("roughness", roughness))
+
+
+def _broadcast_x(model, x) -> np.ndarray:
+    if isinstance(x, str):
+        return np.asarray(model.parse_composition(x), dtype=float)
+    arr = np.asarray(x)
+    if arr.dtype.kind in "US":
+        return np.vectorize(model.parse_composition, otypes=[float])(arr)
+    if arr.dtype.kind == "b" or _holds_bool(x):
+        raise Error("x: a composition is an atomic fraction (a real number or a string such "
+                    "as \"75wt%\"), not a boolean")
+    if arr.dtype.kind == "c":
+        raise Error("x: a composition is an atomic fraction, a real number, not complex")
+    if arr.dtype.kind not in "iuf":
+        raise Error("x: %r is not a composition (a number in [0, 1] or a string such as "
+                    "\"75wt%%\")" % (x,))
+    return np.asarray(arr, dtype=float)
+
+
+def _output_guard(*sources, guard=None):
+    """The inputs of a call that writes, noted as the program notes a command's (core/output.h
+    OutputGuard: no output may replace one): the colour tables, and each source's files: a
+    path, a Dataset's manifest and samples, a Spectrum's file, a Model's inputs (the file it
+    was loaded from; the data set it was fitted to and the model it refitted)."""
+    guard = _core._OutputGuard() if guard is None else guard
+    for source in sources:
+        if isinstance(source, str):
+            guard.note(source)
+        elif source is not None:
+            source._note_inputs(guard)
+    return guard

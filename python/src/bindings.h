@@ -9,9 +9,13 @@
 // becomes the Python exception alloycolor.Error (a ValueError) with the same message, but
 // for the command-line spellings some library messages still carry (--extrapolate,
 // --smoothing, --columns N,K), which are put in the package's words (PythonWords).
-// Nothing here keeps an OutputGuard: the package notes no inputs (m = load_model(p);
-// m.save(p) replaces the file, atomically), and files written as a set (write_spd's eta
-// and k) are refused when two are one file.
+// Every call that writes is handed an OutputGuard (_OutputGuard, made by the package for
+// that call: core/output.h) holding the call's inputs as the program's guard holds a
+// command's: the colour tables, the data set's manifest and samples, the model file read
+// (m = load_model(p); m.save(p) is refused, as `fit --refit M --out M` is), a spectrum's
+// file; an output that is one of them, a symlink, a device or a FIFO is refused before
+// anything is written, and files written as a set (write_spd's eta and k) are refused
+// when two are one file.
 //
 // One file per topic, each adding its functions and classes to the module (module.cc
 // calls them in order): helpers.cc (what every topic shares: the data root, colorimeters,

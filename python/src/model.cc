@@ -118,8 +118,8 @@ ModelClass BindModel(py::module_& m) {
                                return ToArray(xs);
                              })
       .def("to_json", [](const AlloyModel& a) { return JsonToPython(a.ToJson()); })
-      .def("save", [](const AlloyModel& a,
-                      const std::string& path) { WriteFileAtomic(path, ModelFileText(a)); })
+      .def("_save", [](const AlloyModel& a, const std::string& path,
+                       OutputGuard& guard) { WriteFileAtomic(path, ModelFileText(a), &guard); })
       .def("parse_composition",
            [](const AlloyModel& a, const std::string& text) {
              return ParseComposition(text, a.system());

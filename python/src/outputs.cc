@@ -68,7 +68,8 @@ py::dict SpectraDict(const exports::ConductorSpectra& s) {
 // with the material's notes. material_on builds the material from the D65 colorimeter.
 template <typename MaterialOn>
 py::object WriteExport(const MaterialOn& material_on, const std::string& prefix,
-                       const std::string& format, const std::string& scene_dir, double roughness) {
+                       const std::string& format, const std::string& scene_dir, double roughness,
+                       OutputGuard& guard) {
   const exports::ExportSettings settings{format, scene_dir, roughness};
   nlohmann::json doc;
   {
@@ -77,7 +78,7 @@ py::object WriteExport(const MaterialOn& material_on, const std::string& prefix,
     const color::Colorimeter& d65 = GetColorimeter("D65", 2);
     const exports::ExportMaterial material = material_on(d65);
     const exports::ExportFiles e = exports::BuildExport(d65, material, prefix, settings);
-    WriteFileSetAtomic(e.files);
+    WriteFileSetAtomic(e.files, &guard);
     doc = e.summary;
     doc["notes"] = material.spectra.notes;
   }
@@ -88,8 +89,9 @@ py::object WriteExport(const MaterialOn& material_on, const std::string& prefix,
 // what its tables measured.
 py::dict WriteExplorer(const AlloyModel& model, const std::string& path,
                        const std::vector<std::string>& illuminants, int observer_deg,
-                       exports::ExplorerOptions options) {
+                       exports::ExplorerOptions options, OutputGuard& guard) {
   exports::CheckExplorerOptions(options);
+  CheckOutputPath(path, &guard);  // before the work: not an input, a symlink or a device
   std::vector<color::Colorimeter> colorimeters;
   for (const std::string& name : illuminants) {
     try {
@@ -102,7 +104,7 @@ py::dict WriteExplorer(const AlloyModel& model, const std::string& path,
   {
     py::gil_scoped_release release;
     page = exports::BuildExplorerPage(model, colorimeters, options);
-    WriteFileAtomic(path, page.html);
+    WriteFileAtomic(path, page.html, &guard);
   }
   py::dict d;
   d["compositions"] = page.compositions;
@@ -121,6 +123,18 @@ py::dict WriteExplorer(const AlloyModel& model, const std::string& path,
 
 void BindOutputs(py::module_& m, SpectrumClass& spectrum, ModelClass& model) {
   m.attr("_max_tile_size") = render::kMaxTileSize;
+  // The inputs of one call that writes (core/output.h): what the program's guard notes
+  // for the command that reads them, the colour tables noted at once.
+  py::class_<OutputGuard>(m, "_OutputGuard")
+      .def(py::init([]() {
+        auto guard = std::make_unique<OutputGuard>();
+        guard->NoteFolder(DataRootSetting() + "/cie");
+        return guard;
+      }))
+      .def("note", &OutputGuard::NoteInput)
+      .def("note_dataset", &OutputGuard::NoteInputs)
+      .def("check",
+           [](OutputGuard& guard, const std::string& path) { CheckOutputPath(path, &guard); });
   spectrum
       .def("_render",
            [](const NkSpectrum& nk, const std::string& shape, int size, const std::string& lighting,
@@ -132,10 +146,10 @@ void BindOutputs(py::module_& m, SpectrumClass& spectrum, ModelClass& model) {
                  linear);
            })
       .def("_export", [](const NkSpectrum& nk, const std::string& prefix, const std::string& format,
-                         const std::string& scene_dir, double roughness) {
+                         const std::string& scene_dir, double roughness, OutputGuard& guard) {
         return WriteExport(
             [&](const color::Colorimeter& d65) { return exports::MeasuredExportMaterial(d65, nk); },
-            prefix, format, scene_dir, roughness);
+            prefix, format, scene_dir, roughness, guard);
       });
   model
       .def("_render",
@@ -155,13 +169,14 @@ void BindOutputs(py::module_& m, SpectrumClass& spectrum, ModelClass& model) {
            })
       .def("_export",
            [](const AlloyModel& a, double x, const std::string& origin, const std::string& prefix,
-              const std::string& format, const std::string& scene_dir, double roughness) {
+              const std::string& format, const std::string& scene_dir, double roughness,
+              OutputGuard& guard) {
              a.CheckInRange(x);
              return WriteExport(
                  [&](const color::Colorimeter& d65) {
                    return exports::AlloyExportMaterial(d65, a, x, origin);
                  },
-                 prefix, format, scene_dir, roughness);
+                 prefix, format, scene_dir, roughness, guard);
            })
       .def("_description",
            [](const AlloyModel& a, double x, const std::string& origin) {
@@ -171,7 +186,8 @@ void BindOutputs(py::module_& m, SpectrumClass& spectrum, ModelClass& model) {
            [](const AlloyModel& a, const std::string& path,
               const std::vector<std::string>& illuminants, int observer_deg,
               const std::vector<double>& roughness, int size, double tolerance, int threads,
-              const std::string& source, const Dataset* data, const std::string& data_name) {
+              const std::string& source, const Dataset* data, const std::string& data_name,
+              OutputGuard& guard) {
              exports::ExplorerOptions options;
              options.roughness = roughness;
              options.size = size;
@@ -180,16 +196,17 @@ void BindOutputs(py::module_& m, SpectrumClass& spectrum, ModelClass& model) {
              options.source = source;
              options.data = data;
              options.data_name = data_name;
-             return WriteExplorer(a, path, illuminants, observer_deg, options);
+             return WriteExplorer(a, path, illuminants, observer_deg, options, guard);
            })
-      .def("_write_spd", [](const AlloyModel& a, double x, const std::string& material,
-                            const std::string& eta_path, const std::string& k_path) {
-        a.CheckInRange(x);
-        const exports::ConductorSpectra s = exports::ModelSpectra(a, x, material);
-        const std::string eta = exports::SpdText(s, true), k = exports::SpdText(s, false);
-        // One set: both replaced or neither; one file given twice is refused.
-        WriteFileSetAtomic({{eta_path, eta}, {k_path, k}});
-      });
+      .def("_write_spd",
+           [](const AlloyModel& a, double x, const std::string& material,
+              const std::string& eta_path, const std::string& k_path, OutputGuard& guard) {
+             a.CheckInRange(x);
+             const exports::ConductorSpectra s = exports::ModelSpectra(a, x, material);
+             const std::string eta = exports::SpdText(s, true), k = exports::SpdText(s, false);
+             // One set: both replaced or neither; one file given twice is refused.
+             WriteFileSetAtomic({{eta_path, eta}, {k_path, k}}, &guard);
+           });
 }
 
 }  // namespace alloycolor::python

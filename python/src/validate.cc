@@ -19,11 +19,16 @@ void BindValidate(py::module_& m) {
         [](const Dataset& dataset, const std::vector<std::string>& methods,
            const std::vector<std::string>& holdout, const std::string& mode,
            const std::vector<double>& angles_deg, const std::string& illuminant, int observer_deg,
-           const std::string& html_path, const std::string& json_path, const py::object& progress) {
+           const std::string& html_path, const std::string& json_path, const py::object& progress,
+           OutputGuard& guard) {
           for (const std::string& method : methods) {
             if (method != fit::kAutoMethod) RequireMethod(method);
           }
           for (double a : angles_deg) CheckAngleDeg("angles_deg", a);
+          // Before the work: no report replaces an input, a symlink or a device.
+          for (const std::string* path : {&html_path, &json_path}) {
+            if (!path->empty()) CheckOutputPath(*path, &guard);
+          }
           // As `alloycolor validate`: no names, leave each interior composition out (with
           // its replicates); otherwise one split of files and compositions.
           std::vector<validate::SampleSplit> splits;
@@ -58,7 +63,7 @@ void BindValidate(py::module_& m) {
             std::vector<OutputFile> files;
             if (!html_path.empty()) files.push_back({html_path, validate::ValidationHtml(report)});
             if (!json_path.empty()) files.push_back({json_path, JsonText(json, 2) + "\n"});
-            if (!files.empty()) WriteFileSetAtomic(files);
+            if (!files.empty()) WriteFileSetAtomic(files, &guard);
           }
           return JsonToPython(json);
         });

@@ -3,7 +3,10 @@
 //    running command read (NoteInput: device and inode), so that an output that is one
 //    of them (the same file by any path, hard links included) is refused before anything
 //    is written (an input since deleted, whose inode a new file may reuse, no longer
-//    counts); reading a file has no side effect: the program notes its inputs itself;
+//    counts); reading a file has no side effect: each face notes its inputs itself, by
+//    one rule (a data set's manifest and every sample's files, those set aside included:
+//    NoteInputs; the colour tables: NoteFolder; a model or n,k file read: NoteInput), the
+//    program for the life of a command, the Python package for each call that writes;
 //  - the guard also holds the temporaries in flight, so that the program's signal
 //    handlers can remove them (RemoveTemporaries is async-signal-safe: fixed slots,
 //    unlink only); the library installs no handler and keeps no process state;
@@ -34,6 +37,8 @@
 
 namespace alloycolor {
 
+struct Dataset;  // core/dataset.h
+
 // One output file: its path and its whole contents.
 struct OutputFile {
   std::string path;
@@ -57,6 +62,12 @@ class OutputGuard {
 
   // Notes that the command reads `path`; a path that does not exist is ignored.
   void NoteInput(const std::string& path);
+  // Notes the files a data set was read from: its manifest and every sample's n,k file (n
+  // and k files of a pair), the samples it sets aside included.
+  void NoteInputs(const Dataset& dataset);
+  // Notes every regular file in `folder` (the colour tables a colorimeter reads:
+  // DATA_ROOT/cie); a folder that does not exist is ignored.
+  void NoteFolder(const std::string& folder);
   // Throws Error when `path` (already lstat'ed as `info`'s device and inode) is a noted
   // input that is still that file.
   void CheckNotInput(const std::string& path, unsigned long long device, unsigned long long inode);

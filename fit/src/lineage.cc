@@ -137,13 +137,13 @@ std::unique_ptr<AlloyModel> FitDataSet(const std::string& method, const Dataset&
   return model;
 }
 
-std::function<std::unique_ptr<AlloyModel>(const Dataset&)> WholeDataSetFitter(
-    const color::Colorimeter& colorimeter, ThreadBudget* threads) {
-  return [&colorimeter, threads](const Dataset& dataset) {
+std::function<std::unique_ptr<AlloyModel>(const std::string& method, const Dataset&)>
+WholeDataSetFitter(const color::Colorimeter& colorimeter, ThreadBudget* threads) {
+  return [&colorimeter, threads](const std::string& method, const Dataset& dataset) {
     FitSettings settings;
     settings.colorimeter = &colorimeter;
     settings.threads = threads;
-    return FitDataSet(kAutoMethod, dataset, settings, {nullptr, NowUtcIso8601()});
+    return FitDataSet(method, dataset, settings, {nullptr, NowUtcIso8601()});
   };
 }
 

@@ -484,8 +484,10 @@ ValidationReport ComputeValidation(const Dataset& dataset, const std::vector<Sam
   }
   if (!any_method) throw Error(first_error);
   if (options.fit_whole) {
-    Report(progress, "validate: the whole data set (its samples checked, where to measure next)");
-    report.whole = DescribeWholeDataSet(dataset, colorimeter, options.fit_whole);
+    const std::string method = options.methods.size() == 1 ? options.methods[0] : "auto";
+    Report(progress, "validate: the whole data set with " + method +
+                         " (its samples checked, where to measure next)");
+    report.whole = DescribeWholeDataSet(dataset, colorimeter, options.fit_whole, method);
   }
   return report;
 }

@@ -9,13 +9,13 @@
 
 namespace alloycolor::validate {
 
-WholeDataSet DescribeWholeDataSet(
-    const Dataset& dataset, const color::Colorimeter& colorimeter,
-    const std::function<std::unique_ptr<AlloyModel>(const Dataset&)>& fit_whole, int count) {
+WholeDataSet DescribeWholeDataSet(const Dataset& dataset, const color::Colorimeter& colorimeter,
+                                  const ModelBuilder& fit_whole, const std::string& method,
+                                  int count) {
   WholeDataSet w;
   std::unique_ptr<AlloyModel> model;
   try {
-    model = fit_whole(dataset);
+    model = fit_whole(method, dataset);
   } catch (const Error& e) {
     w.error = e.what();
     return w;

@@ -36,11 +36,12 @@ struct FitRecord {
 std::unique_ptr<AlloyModel> FitDataSet(const std::string& method, const Dataset& dataset,
                                        const FitSettings& settings, const FitRecord& record);
 
-// FitDataSet with auto and the default options, dated now, as a function of the data set:
-// what a validation report describes the whole data set by (validate::DescribeWholeDataSet).
-// `colorimeter` (and `threads`, if given) must outlive it.
-std::function<std::unique_ptr<AlloyModel>(const Dataset&)> WholeDataSetFitter(
-    const color::Colorimeter& colorimeter, ThreadBudget* threads = nullptr);
+// FitDataSet with the default options, dated now, as a function of the method and the
+// data set: what a validation report describes the whole data set by
+// (validate::ValidationOptions::fit_whole). `colorimeter` (and `threads`, if given) must
+// outlive it.
+std::function<std::unique_ptr<AlloyModel>(const std::string& method, const Dataset&)>
+WholeDataSetFitter(const color::Colorimeter& colorimeter, ThreadBudget* threads = nullptr);
 
 // The entry FitDataSet adds to the history of `model`, fitted to `dataset`, after
 // `previous` (null for a first fit).

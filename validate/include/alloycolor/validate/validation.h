@@ -60,8 +60,9 @@ struct ValidationOptions {
   // and the splits that failed.
   ProgressCallback details;
   // The model of the whole data set the report opens with (ValidationReport::whole,
-  // DescribeWholeDataSet): the face's fit::WholeDataSetFitter; empty: not described.
-  std::function<std::unique_ptr<AlloyModel>(const Dataset&)> fit_whole;
+  // DescribeWholeDataSet): the face's fit::WholeDataSetFitter; empty: not described. Its
+  // method: the one validated, where one is; else auto, as `fit` chooses.
+  ModelBuilder fit_whole;
 };
 
 // What one method predicts for one held-out sample.
@@ -166,13 +167,13 @@ struct ValidationReport {
   WholeDataSet whole;  // described where ValidationOptions::fit_whole is given
 };
 
-// Builds the model of the whole data set with `fit_whole` (the face's: fit::FitDataSet with
-// auto, so that its samples are checked) and describes it (WholeDataSet), with `count`
+// Builds the model of the whole data set with `fit_whole` (the face's: fit::FitDataSet, so
+// that its samples are checked) and `method`, and describes it (WholeDataSet), with `count`
 // suggestions of where to measure next. A model that cannot be built is described by its
 // error. Colour at normal incidence under `colorimeter`.
-WholeDataSet DescribeWholeDataSet(
-    const Dataset& dataset, const color::Colorimeter& colorimeter,
-    const std::function<std::unique_ptr<AlloyModel>(const Dataset&)>& fit_whole, int count = 3);
+WholeDataSet DescribeWholeDataSet(const Dataset& dataset, const color::Colorimeter& colorimeter,
+                                  const ModelBuilder& fit_whole, const std::string& method,
+                                  int count = 3);
 
 // One split: the held-out samples, as indices into dataset.samples.
 using SampleSplit = std::vector<size_t>;

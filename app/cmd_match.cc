@@ -229,12 +229,12 @@ void RegisterMatch(CLI::App& app) {
   AddColorimetryOptions(cmd, &o->illuminant, &o->observer);
   cmd->add_option("--target-sigma", o->target_sigma,
                   "One-sigma dE00 of the target's own measurement")
-      ->check(NumberIn(0, 100))
+      ->check(NumberIn(color::kTargetSigmaRange))
       ->capture_default_str();
   cmd->add_option("--margin", o->margin,
                   "List other local minima within this dE00 of the best (for --reflectance: "
                   "percent of reflectance RMS)")
-      ->check(NumberIn(0, 1000))
+      ->check(NumberIn(color::kMatchMarginRange))
       ->capture_default_str();
   cmd->add_flag("--json", o->json, "Print one JSON object");
   cmd->add_flag("--quiet", o->quiet, "No warnings or progress on stderr");

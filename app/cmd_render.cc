@@ -64,23 +64,12 @@ render::RenderOptions CheckedOptions(const RenderCommandOptions& o) {
   } catch (const Error& e) {
     throw Error(std::string("--background: ") + e.what());
   }
-  if (o.size < 1 || o.size > render::kMaxTileSize) {
-    throw Error("--size: " + std::to_string(o.size) + " lies outside 1-" +
-                std::to_string(render::kMaxTileSize) + " pixels");
-  }
   options.size = o.size;
-  if (!(o.roughness >= 0.0 && o.roughness <= render::kMaxRoughness)) {
-    throw Error("--roughness: " + Format("%g", o.roughness) + " lies outside 0-" +
-                Format("%g", render::kMaxRoughness) + " (GGX alpha)");
-  }
   options.roughness = o.roughness;
+  options.threads = o.threads;
+  render::CheckRenderOptions(options, o.direct, OptionSpelling::kFlag);
   if (o.bit_depth != 8 && o.bit_depth != 16) {
     throw Error("--bit-depth: " + std::to_string(o.bit_depth) + " is not 8 or 16");
-  }
-  if (o.threads < 0) throw Error("--threads: " + std::to_string(o.threads) + " is negative");
-  options.threads = o.threads;
-  if (o.direct && o.roughness > 0.0) {
-    throw Error("--direct: direct spectral evaluation at every pixel needs --roughness 0");
   }
   return options;
 }

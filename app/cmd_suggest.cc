@@ -119,7 +119,7 @@ void RegisterSuggest(CLI::App& app) {
   o->source.AddOptions(cmd, true, false);
   cmd->add_option("--count", o->count, "How many compositions to propose (1-20)")
       ->capture_default_str()
-      ->check(NumberIn(1, 20, true));
+      ->check(NumberIn(color::kSuggestCountRange));
   cmd->add_option("--rule", o->rule,
                   "largest-sigma (the composition of largest one-sigma) or widest-gap (the "
                   "middle of the widest gap between measured compositions)")

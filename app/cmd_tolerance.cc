@@ -137,7 +137,7 @@ void RegisterTolerance(CLI::App& app) {
   o->source.AddOptions(cmd, true, /*with_extrapolate=*/false);
   cmd->add_option("--x", o->x_text, "Composition: 0.75, 75at%, 75wt% or 18k")->required();
   cmd->add_option("--de", o->de00, "Largest colour difference allowed (CIEDE2000)")
-      ->check(NumberIn(1e-6, 100))
+      ->check(NumberIn(color::kToleranceDeRange))
       ->capture_default_str();
   cmd->add_option("--angles", o->angles, "Angles of incidence in degrees, comma-separated")
       ->capture_default_str();

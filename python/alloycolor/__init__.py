@@ -30,9 +30,8 @@ import numpy as np
 from . import _alloycolor as _core
 from . import _paths
 from ._alloycolor import Error, illuminants
-from ._args import (_broadcast_x, _callable, _columns_text, _export_args, _flag, _holds_bool,
-                    _observer, _output_guard, _path, _real, _real_array, _render_args, _text,
-                    _whole)
+from ._args import (_broadcast_x, _callable, _columns_text, _export_args, _flag, _observer, _output_guard, _path, _real, _real_array, _render_args, _setting,
+                    _text, _texts, _whole)
 from ._options import fit_doc as _fit_doc, fit_options as _fit_options
 from ._options import fit_signature as _fit_signature
 
@@ -254,13 +253,13 @@ class Model:
         set's units), "sigma_de00" (the one-sigma there now, as :meth:`color` gives it),
         "max_sigma_before"/"max_sigma_after" and "mean_sigma_before"/"mean_sigma_after" over
         the composition range, and "rule"."""
-        return self._core._suggest(_whole("count", count, 1, 20), _text("rule", rule),
+        return self._core._suggest(int(_setting("count", count)), _text("rule", rule),
                                    _text("illuminant", illuminant),
                                    _observer("observer", observer))
 
     def parse_composition(self, text: str) -> float:
         """x_atomic from "0.75", "75at%", "75wt%" or "18k" (gold alloys)."""
-        return self._core.parse_composition(text)
+        return self._core.parse_composition(_text("text", text))
 
     def _optics(self, x, lambda_nm, index: bool) -> np.ndarray:
         xs = _broadcast_x(self, x)
@@ -299,22 +298,28 @@ class Model:
         given = [v is not None for v in (lab, hex, xyz)]
         if sum(given) != 1:
             raise Error("match: give exactly one of lab, hex or xyz")
+        settings = (_real("angle_deg", angle_deg), _text("illuminant", illuminant),
+                    _observer("observer", observer), _setting("target_sigma", target_sigma),
+                    _setting("margin", margin), _flag("sigma", sigma),
+                    _flag("all_minima", all_minima))
+        colorimeter = settings[1:3]
         if hex is not None:
             texts = np.asarray(hex, dtype=object)
-            flat = [_core._lab_from_hex(str(t), illuminant, int(observer)) for t in texts.ravel()]
+            flat = [_core._lab_from_hex(_text("hex", t), *colorimeter) for t in texts.ravel()]
             targets = np.asarray(flat, dtype=float).reshape(texts.shape + (3,))
         else:
-            targets = np.asarray(lab if lab is not None else xyz, dtype=float)
+            name = "lab" if lab is not None else "xyz"
+            targets = _real_array(name, lab if lab is not None else xyz)
             if targets.ndim == 0 or targets.shape[-1] != 3:
-                raise Error("match: targets must have shape (..., 3), not %s" % (targets.shape,))
+                raise Error("%s: targets must have shape (..., 3), not %s" % (name,
+                                                                              targets.shape))
             if xyz is not None:
-                flat = [_core._lab_from_xyz(float(t[0]), float(t[1]), float(t[2]), illuminant,
-                                            int(observer)) for t in targets.reshape(-1, 3)]
+                flat = [_core._lab_from_xyz(float(t[0]), float(t[1]), float(t[2]), *colorimeter)
+                        for t in targets.reshape(-1, 3)]
                 targets = np.asarray(flat, dtype=float).reshape(targets.shape)
         shape = targets.shape[:-1]
-        out = self._core._match(targets.reshape(-1, 3), float(angle_deg), illuminant,
-                                int(observer), float(target_sigma), float(margin), bool(sigma),
-                                bool(all_minima))
+        target = "lab" if lab is not None else "xyz" if xyz is not None else "hex"
+        out = self._core._match(targets.reshape(-1, 3), target, *settings)
         for key in ("x", "x_sigma", "de00", "reachable", "n_minima"):
             out[key] = out[key].reshape(shape)
         out["lab"] = out["lab"].reshape(shape + (3,))
@@ -328,11 +333,10 @@ class Model:
         fraction), "clipped_low", "clipped_high" (the window reaches the model's range) and
         "de00_per_at_percent" (the fastest rate of colour change at x)."""
         xs = _broadcast_x(self, x)
-        if isinstance(illuminants, str):
-            illuminants = [illuminants]
-        angles = [float(a) for a in np.atleast_1d(angles_deg)]
-        out = self._core._tolerance(xs.ravel(), float(de), angles, list(illuminants),
-                                    int(observer))
+        angles = [float(a) for a in np.atleast_1d(_real_array("angles_deg", angles_deg))]
+        out = self._core._tolerance(xs.ravel(), _setting("de", de), angles,
+                                    _texts("illuminants", illuminants),
+                                    _observer("observer", observer))
         return {key: value.reshape(xs.shape) for key, value in out.items()}
 
     def save(self, path: Union[str, os.PathLike]) -> None:
@@ -409,14 +413,12 @@ class Model:
             data = self._data
         elif not isinstance(data, Dataset):
             data = Dataset(data)
-        if isinstance(illuminants, str):
-            illuminants = [illuminants]
-        names = [_text("illuminants", name) for name in illuminants]
+        names = _texts("illuminants", illuminants)
         rough = [_real("roughness", r) for r in np.atleast_1d(_real_array("roughness", roughness))]
         return self._core._explore(
             _path("path", path), names, _observer("observer", observer), rough,
-            _whole("size", size, -2**31, 2**31 - 1), _real("tolerance", tolerance),
-            _whole("threads", threads, -2**31, 2**31 - 1), self._source,
+            _whole("size", size), _real("tolerance", tolerance), _whole("threads", threads),
+            self._source,
             None if data is None else data._core, "" if data is None else data._given,
             _output_guard(self, data))
 
@@ -497,10 +499,8 @@ def color(source, x=None, angle_deg=0.0, illuminant="D65", observer=2, sigma=Fal
     ill = np.asarray(illuminant, dtype=object)
     for name in ill.ravel():
         _text("illuminant", name)
-    obs = np.asarray(observer)
-    if (obs.dtype.kind not in "iuf" or _holds_bool(observer)
-            or not np.all(np.isin(obs, (2, 10)))):
-        raise Error("observer: %r is not 2 or 10" % (observer,))
+    obs = np.asarray(observer, dtype=object)
+    obs = np.asarray([_observer("observer", o) for o in obs.ravel()]).reshape(obs.shape)
     xs, ang, ill_b, obs_b = np.broadcast_arrays(xs, _real_array("angle_deg", angle_deg), ill, obs)
     shape = xs.shape
     n = xs.size

@@ -1,9 +1,14 @@
 """The package's checks of its arguments: each value as the library takes it (a real number,
 a whole number, a flag, text, a path), refused with a message naming the keyword it was
-given as. Ranges are the library's (``_core._check_number``, the registry's declarations)."""
+given as. Ranges and their words are the library's, as the program's options have them: the
+registry's declarations (fit), the settings' ranges (``_setting``: match, tolerance,
+suggest), the library's checks of angles, colour tables, pictures, exports and pages; a
+number is given to them as Python spells it (``_spelled``), so that the words are those
+the program prints for the same text."""
 
 import numbers
 import os
+from typing import Iterable
 
 import numpy as np
 
@@ -22,18 +27,42 @@ def _real(name: str, value) -> float:
     return float(value)
 
 
-def _whole(name: str, value, lo: float, hi: float) -> int:
-    """value as an int, when it is a whole number in [lo, hi] (the library's check)."""
+def _whole(name: str, value, lo: float = -2**31, hi: float = 2**31 - 1) -> int:
+    """value as an int, when it is a whole number in [lo, hi] (the library's check; by
+    default the range of the program's whole-number options, whose own ranges the library
+    checks after)."""
     v = _real(name, value)
     _core._check_number(name, v, lo, hi, True)
     return int(v)
 
 
-def _observer(name: str, value) -> int:
-    v = _whole(name, value, 2, 10)
-    if v not in (2, 10):
-        raise Error("%s: %r is not 2 or 10" % (name, value))
+def _spelled(value) -> str:
+    """A real number as Python spells it: the text a user would give the program for it."""
+    return repr(float(value)) if isinstance(value, (float, np.floating)) else str(int(value))
+
+
+def _setting(name: str, value) -> float:
+    """A number checked against the range every face takes for the setting ``name`` (the
+    library's: match's target_sigma and margin, tolerance's de, suggest's count), refused in
+    the words the program uses for the same value."""
+    v = _real(name, value)
+    _core._check_setting(name, _spelled(value))
     return v
+
+
+def _observer(name: str, value) -> int:
+    """A CIE observer, as the program takes --observer: a whole number, which the library's
+    colour tables accept when it is 2 or 10 ("unknown observer 5 deg; valid observers: ...")."""
+    return _whole(name, value)
+
+
+def _texts(name: str, value) -> list:
+    """One string or a sequence of strings, as a list."""
+    if isinstance(value, str):
+        return [value]
+    if isinstance(value, (bytes, dict)) or not isinstance(value, Iterable):
+        raise Error("%s: %r is not a string or a sequence of strings" % (name, value))
+    return [_text(name, v) for v in value]
 
 
 def _path(name: str, value) -> str:
@@ -83,20 +112,26 @@ def _real_array(name: str, value) -> np.ndarray:
 
 
 def _columns_text(columns) -> str:
+    """columns as the program's --columns N,K: "n6,k6", or two names or 1-based numbers."""
     if columns is None:
         return ""
     if isinstance(columns, str):
         return columns
-    parts = [str(c) for c in columns]
+    if isinstance(columns, (bool, bytes, dict)) or not isinstance(columns, Iterable):
+        raise Error("columns: give \"N,K\" or two columns (n and k), not %r" % (columns,))
+    parts = list(columns)
+    for c in parts:
+        if isinstance(c, (bool, np.bool_)) or not isinstance(c, (str, numbers.Integral)):
+            raise Error("columns: %r is not a column's name or 1-based number" % (c,))
     if len(parts) != 2:
         raise Error("columns: give two columns (n and k), not %r" % (columns,))
-    return ",".join(parts)
+    return ",".join(str(c) for c in parts)
 
 
 def _render_args(shape, size, lighting, roughness, background, illuminant, observer, direct,
                  linear) -> tuple:
     """The compiled renderer's arguments after the material's own."""
-    return (_text("shape", shape), _whole("size", size, 1, _core._max_tile_size),
+    return (_text("shape", shape), _whole("size", size),
             _text("lighting", lighting), _real("roughness", roughness),
             "" if background is None else _text("background", background),
             _text("illuminant", illuminant), _observer("observer", observer),

@@ -122,15 +122,34 @@ py::dict SpectrumColors(const NkSpectrum& nk, const Array& angle_in, const std::
 
 // ---- from colour to composition ------------------------------------------------------------
 
+// What `work` returns; an Error it throws named as `alloycolor match` names its target's
+// option ("hex: ...", the package's keyword), unless the message names it already.
+template <typename Work>
+auto NamedTarget(const std::string& name, const Work& work) {
+  try {
+    return work();
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    if (what.rfind(name + ":", 0) == 0) throw;
+    throw Error(name + ": " + what);
+  }
+}
+
 // The best match for each target colour (rows of an (N, 3) CIELAB array), with the number
 // of local minima within the margin and, with all_minima, every one of them.
-py::dict ModelMatch(const AlloyModel& model, const Array& lab_in, double angle_deg,
-                    const std::string& illuminant, int observer_deg, double target_sigma,
-                    double margin, bool sigma, bool all_minima) {
+py::dict ModelMatch(const AlloyModel& model, const Array& lab_in, const std::string& target,
+                    double angle_deg, const std::string& illuminant, int observer_deg,
+                    double target_sigma, double margin, bool sigma, bool all_minima) {
   if (lab_in.ndim() != 2 || lab_in.shape(1) != 3) {
     throw Error("match: the targets must be an (N, 3) array of CIELAB L*, a*, b*");
   }
+  CheckAngleDeg("angle_deg", angle_deg);
   const py::ssize_t n = lab_in.shape(0);
+  // Before the work: each target as the program checks its --lab, --xyz or --hex.
+  for (py::ssize_t i = 0; i < n; ++i) {
+    const double* row = lab_in.data() + 3 * i;
+    NamedTarget(target, [&] { return color::CheckTargetLab({row[0], row[1], row[2]}), 0; });
+  }
   py::array_t<double> x(n), x_sigma(n), de00(n), lab({n, py::ssize_t{3}});
   py::array_t<bool> reachable(n);
   py::array_t<int> minima(n);
@@ -200,6 +219,7 @@ py::dict ModelTolerance(const AlloyModel& model, const Array& x_in, double de00,
                         const std::vector<double>& angles_deg,
                         const std::vector<std::string>& illuminants, int observer_deg) {
   const std::vector<double> xs = ToVector(x_in);
+  for (double a : angles_deg) CheckAngleDeg("angles_deg", a);
   const py::ssize_t n = static_cast<py::ssize_t>(xs.size());
   py::array_t<double> low(n), high(n), speed(n);
   py::array_t<bool> clipped_low(n), clipped_high(n);
@@ -235,14 +255,18 @@ py::dict ModelTolerance(const AlloyModel& model, const Array& x_in, double de00,
 void BindColour(py::module_& m, SpectrumClass& spectrum, ModelClass& model) {
   m.def("illuminants", &color::IlluminantNames);
   m.def("_lab_from_hex", [](const std::string& hex, const std::string& illuminant, int observer) {
-    const color::Lab lab = color::LabFromHex(GetColorimeter(illuminant, observer), hex);
+    const color::Colorimeter& colorimeter = GetColorimeter(illuminant, observer);
+    const color::Lab lab = NamedTarget("hex", [&] { return color::LabFromHex(colorimeter, hex); });
     return std::vector<double>{lab.L, lab.a, lab.b};
   });
-  m.def("_lab_from_xyz", [](double X, double Y, double Z, const std::string& illuminant,
-                            int observer) {
-    const color::Lab lab = color::LabFromTargetXYZ(GetColorimeter(illuminant, observer), {X, Y, Z});
-    return std::vector<double>{lab.L, lab.a, lab.b};
-  });
+  m.def("_lab_from_xyz",
+        [](double X, double Y, double Z, const std::string& illuminant, int observer) {
+          const color::Colorimeter& colorimeter = GetColorimeter(illuminant, observer);
+          const color::Lab lab = NamedTarget("xyz", [&] {
+            return color::LabFromTargetXYZ(colorimeter, {X, Y, Z});
+          });
+          return std::vector<double>{lab.L, lab.a, lab.b};
+        });
   spectrum.def("_color", &SpectrumColors);
   model.def("_color", &ModelColors).def("_match", &ModelMatch).def("_tolerance", &ModelTolerance);
 }

@@ -35,13 +35,23 @@ py::object RenderTile(const IndexOn& index_on, const std::string& label, const s
                       int size, const std::string& lighting, double roughness,
                       const std::string& background, const std::string& illuminant,
                       int observer_deg, bool direct, bool linear) {
+  // As `alloycolor render` takes its options, each refused naming its keyword.
+  const auto named = [](const char* keyword, const auto& from_name, const std::string& name) {
+    try {
+      return from_name(name);
+    } catch (const Error& e) {
+      throw Error(keyword + std::string(": ") + e.what());
+    }
+  };
   render::RenderOptions options;
-  options.shape = render::ShapeFromName(shape);
+  options.shape = named("shape", render::ShapeFromName, shape);
   options.size = size;
-  options.lighting = render::LightingFromName(lighting);
+  options.lighting = named("lighting", render::LightingFromName, lighting);
   options.roughness = roughness;
-  options.background = background.empty() ? render::DefaultBackground(options.lighting)
-                                          : render::BackgroundFromName(background);
+  options.background = background.empty()
+                           ? render::DefaultBackground(options.lighting)
+                           : named("background", render::BackgroundFromName, background);
+  render::CheckRenderOptions(options, direct);
   render::LinearImage image;
   {
     py::gil_scoped_release release;

@@ -5,6 +5,10 @@
 
 #include <pybind11/stl.h>
 
+#include <map>
+
+#include "alloycolor/color/match.h"
+#include "alloycolor/color/suggest.h"
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/setting.h"
 #include "bindings.h"
@@ -101,16 +105,33 @@ void BindRegistry(py::module_& m) {
   });
 
   // One option's value checked against its declaration, named `label` (the keyword it was
-  // given as: "degree", "lambda_range_nm[2] (step)").
+  // given as: "degree", "lambda_range_nm[2] (step)"); a number as Python spells it, so that
+  // the words are the program's for that text (OptionTextProblem: NaN too).
   m.def("_check_option",
         [](const std::string& name, const py::object& value, const std::string& label) {
           const OptionSpec* spec = FindOption(name);
           if (spec == nullptr) throw Error(label + ": no method takes this option");
-          if (const std::string problem = OptionProblem(*spec, OptionFromPython(value));
-              !problem.empty()) {
-            throw Error(label + ": " + problem);
-          }
+          const OptionValue given = OptionFromPython(value);
+          const std::string problem =
+              given.type == OptionValue::Type::kNumber &&
+                      (spec->kind == OptionKind::kWhole || spec->kind == OptionKind::kNumber)
+                  ? OptionTextProblem(*spec, py::str(py::repr(value)).cast<std::string>())
+                  : OptionProblem(*spec, given);
+          if (!problem.empty()) throw Error(label + ": " + problem);
         });
+
+  // A setting of match, tolerance or suggest, given as Python spells it, checked against
+  // the range every face takes for it, in the program's words for the same text.
+  m.def("_check_setting", [](const std::string& name, const std::string& text) {
+    static const std::map<std::string, NumberRange> kRanges = {
+        {"target_sigma", color::kTargetSigmaRange},
+        {"margin", color::kMatchMarginRange},
+        {"de", color::kToleranceDeRange},
+        {"count", color::kSuggestCountRange},
+    };
+    const std::string problem = NumberProblem(text, kRanges.at(name));
+    if (!problem.empty()) throw Error(name + ": " + problem);
+  });
 
   // The library's check of a number against a range, named as the caller gave it.
   m.def("_check_number",

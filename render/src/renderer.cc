@@ -277,6 +277,32 @@ void CheckOptions(const RenderOptions& o) {
 
 }  // namespace
 
+void CheckRenderOptions(const RenderOptions& o, bool direct, OptionSpelling spelling) {
+  const auto named = [spelling](const char* name) {
+    return (spelling == OptionSpelling::kFlag ? "--" : "") + std::string(name);
+  };
+  const auto number = [](double value) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%g", value);
+    return std::string(text);
+  };
+  if (o.size < 1 || o.size > kMaxTileSize) {
+    throw Error(named("size") + ": " + std::to_string(o.size) + " lies outside 1-" +
+                std::to_string(kMaxTileSize) + " pixels");
+  }
+  if (!(o.roughness >= 0.0 && o.roughness <= kMaxRoughness)) {
+    throw Error(named("roughness") + ": " + number(o.roughness) + " lies outside 0-" +
+                number(kMaxRoughness) + " (GGX alpha)");
+  }
+  if (o.threads < 0) {
+    throw Error(named("threads") + ": " + std::to_string(o.threads) + " is negative");
+  }
+  if (direct && o.roughness > 0.0) {
+    throw Error(named("direct") + ": direct spectral evaluation at every pixel needs " +
+                named("roughness") + " 0");
+  }
+}
+
 Shape ShapeFromName(const std::string& name) {
   if (name == "sphere") return Shape::kSphere;
   if (name == "ring") return Shape::kRing;

@@ -112,7 +112,9 @@ def test_a_columns_message_names_the_keyword(tmp_path):
 
 
 @pytest.mark.parametrize("call, needle", [
-    (lambda m: m.render(0.5, size=10**12), "size: 1e+12 is not a whole number in [1, 4096]"),
+    # Past any whole number the program takes; within them, the program's range and words.
+    (lambda m: m.render(0.5, size=10**12), "size: 1e+12 is not a whole number in [-2147483648"),
+    (lambda m: m.render(0.5, size=5000), "size: 5000 lies outside 1-4096 pixels"),
     (lambda m: m.render(0.5, size=True), "size:"),
     (lambda m: m.render(0.5, shape=3), "shape:"),
     (lambda m: m.render(0.5, size=8, linear="no"), "linear:"),

@@ -39,6 +39,7 @@
 
 #include "alloycolor/color/colorimetry.h"
 #include "alloycolor/color/sweep.h"
+#include "alloycolor/core/setting.h"
 #include "alloycolor/model/alloy_model.h"
 
 namespace alloycolor::color {
@@ -56,6 +57,13 @@ inline constexpr double kToleranceStep = 5e-4;
 // The most local minima of the scan refined (the lowest): a bound on the work for a model
 // whose colour swings back and forth, far more than any fitted model has.
 inline constexpr std::size_t kMaxRefinedMinima = 32;
+
+// The ranges every face takes for the settings of match and tolerance (the program's
+// --target-sigma, --margin and --de, the Python package's target_sigma, margin and de),
+// checked with NumberProblem so that a value is refused in the same words by both.
+inline constexpr NumberRange kTargetSigmaRange{0, 100};
+inline constexpr NumberRange kMatchMarginRange{0, 1000};
+inline constexpr NumberRange kToleranceDeRange{1e-6, 100};
 
 struct MatchOptions {
   double angle_deg = 0.0;

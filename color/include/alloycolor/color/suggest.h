@@ -29,6 +29,7 @@
 
 #include "alloycolor/color/colorimetry.h"
 #include "alloycolor/core/parallel.h"
+#include "alloycolor/core/setting.h"
 #include "alloycolor/model/alloy_model.h"
 
 namespace alloycolor::color {
@@ -43,8 +44,11 @@ enum class SuggestRule { kLargestSigma, kWidestGap };
 std::string SuggestRuleName(SuggestRule rule);
 SuggestRule ParseSuggestRule(const std::string& name);
 
+// How many compositions every face lets suggest propose (--count, count).
+inline constexpr NumberRange kSuggestCountRange{1, 20, true};
+
 struct SuggestOptions {
-  int count = 1;  // 1..20
+  int count = 1;  // kSuggestCountRange
   SuggestRule rule = SuggestRule::kLargestSigma;
   double min_distance = kSuggestMinDistance;
   ThreadBudget* threads = nullptr;

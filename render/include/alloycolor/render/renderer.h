@@ -48,6 +48,7 @@
 #include <vector>
 
 #include "alloycolor/color/colorimetry.h"
+#include "alloycolor/core/setting.h"
 #include "alloycolor/model/alloy_model.h"
 #include "alloycolor/render/image.h"
 #include "alloycolor/render/shading.h"
@@ -82,6 +83,14 @@ struct RenderOptions {
   Background background = Background::kBackdrop;
   int threads = 0;  // 0: one per hardware thread
 };
+
+// The picture's settings as every face takes them (the program's render, Python's
+// Model.render and Spectrum.render), checked before any work and named as `spelling`
+// spells them ("size" or "--size"): size 1-kMaxTileSize pixels, roughness 0-kMaxRoughness
+// (GGX alpha), threads not negative, and `direct` spectral evaluation at every pixel only
+// at roughness 0.
+void CheckRenderOptions(const RenderOptions& options, bool direct,
+                        OptionSpelling spelling = OptionSpelling::kName);
 
 // What a page needs to shade a tile itself: for each pixel, the unit normal n (n.z >= 0:
 // the first surface the centre ray meets faces the camera) and the coverage in [0, 1],

@@ -68,11 +68,13 @@ double RelativeEpsSigma(const PredictionError& e, double x) {
 
 // The one-sigma of `model` at each of xs.
 std::vector<double> SigmaAt(const Colorimeter& cm, const AlloyModel& model, bool colour,
-                            const std::vector<double>& xs, ThreadBudget* threads) {
+                            const std::vector<double>& xs, const SuggestOptions& options,
+                            ThreadBudget* threads) {
   std::vector<double> sigma(xs.size(), kNaN);
   ParallelTasks(
       xs.size(),
       [&](size_t i) {
+        CheckCancel(options.cancel);
         sigma[i] = colour ? DeltaE00Sigma(cm, model, xs[i], 0.0)
                           : RelativeEpsSigma(model.prediction_error(), xs[i]);
       },
@@ -138,11 +140,13 @@ SuggestResult SuggestCompositions(const Colorimeter& colorimeter, const AlloyMod
                             (model.x_max() - model.x_min()) * i / (kSuggestGrid - 1.0));
   }
   if (sigma)
-    result.scan_sigma = SigmaAt(colorimeter, model, colour, result.scan_x, options.threads);
+    result.scan_sigma =
+        SigmaAt(colorimeter, model, colour, result.scan_x, options, options.threads);
   // The rule looks at what a measurement can remove; the figures are the whole one-sigma's.
   std::vector<double> reducible, chosen;
   if (sigma && rule == SuggestRule::kLargestSigma) {
-    reducible = SigmaAt(colorimeter, *Reducible(model), colour, result.scan_x, options.threads);
+    reducible =
+        SigmaAt(colorimeter, *Reducible(model), colour, result.scan_x, options, options.threads);
   }
   for (int n = 0; n < options.count; ++n) {
     std::vector<double> taken = measured;
@@ -163,17 +167,17 @@ SuggestResult SuggestCompositions(const Colorimeter& colorimeter, const AlloyMod
     Suggestion s;
     s.x_atomic = x;
     if (sigma) {
-      s.sigma = SigmaAt(colorimeter, model, colour, {x}, nullptr)[0];
+      s.sigma = SigmaAt(colorimeter, model, colour, {x}, options, nullptr)[0];
       const std::unique_ptr<AlloyModel> after = AfterMeasuring(model, chosen);
       const std::vector<double> next =
-          SigmaAt(colorimeter, *after, colour, result.scan_x, options.threads);
+          SigmaAt(colorimeter, *after, colour, result.scan_x, options, options.threads);
       s.max_sigma_before = *std::max_element(result.scan_sigma.begin(), result.scan_sigma.end());
       s.mean_sigma_before = Mean(result.scan_sigma);
       s.max_sigma_after = *std::max_element(next.begin(), next.end());
       s.mean_sigma_after = Mean(next);
       if (rule == SuggestRule::kLargestSigma && n + 1 < options.count) {
-        reducible =
-            SigmaAt(colorimeter, *Reducible(*after), colour, result.scan_x, options.threads);
+        reducible = SigmaAt(colorimeter, *Reducible(*after), colour, result.scan_x, options,
+                            options.threads);
       }
     }
     result.suggestions.push_back(s);

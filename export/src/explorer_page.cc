@@ -377,6 +377,7 @@ ExplorerPage BuildExplorerPage(const AlloyModel& model,
   }
   table_options.tolerance_de00 = o.tolerance_de00;
   table_options.threads = o.threads;
+  table_options.cancel = o.cancel;
   const render::CompositionTable table =
       render::BuildCompositionTable(model, colorimeters, table_options);
 
@@ -387,9 +388,11 @@ ExplorerPage BuildExplorerPage(const AlloyModel& model,
   in.table = &table;
   for (double r : table.roughness) in.finish_names.push_back(FinishName(r));
   in.samples = Samples(o, model, table, &in.samples_note);
+  CheckCancel(o.cancel);
   in.sphere = render::TraceNormals(render::Shape::kSphere, o.size);
   in.ring = render::TraceNormals(render::Shape::kRing, o.size);
   for (double r : table.roughness) {
+    CheckCancel(o.cancel);
     // A rough finish blurs the light tent, so its map can be coarser.
     const int width = r > 0.0 ? kRoughEnvironmentWidth : kMirrorEnvironmentWidth;
     in.environment_maps.push_back(
@@ -401,6 +404,7 @@ ExplorerPage BuildExplorerPage(const AlloyModel& model,
   suggest.count = 3;
   ThreadBudget threads(o.threads);
   suggest.threads = &threads;
+  suggest.cancel = o.cancel;
   in.suggestions = color::SuggestCompositions(colorimeters.front(), model, suggest).suggestions;
 
   ExplorerPage page;

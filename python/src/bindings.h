@@ -4,8 +4,11 @@
 // command-line program runs (core readers and data sets, fit::BuildModel, the colour chain
 // of color/, validate::ComputeValidation, render::Renderer, export/). The pure-Python
 // wrapper in python/alloycolor/__init__.py adds numpy broadcasting and the data root.
-// Long work (fits, validation, large colour arrays, rendering) runs without the GIL; a
-// progress callback, when given, is called with the GIL held again. alloycolor::Error
+// Long work (fits, validation, colours, matches, pictures, pages, exports) runs without
+// the GIL on a thread of its own (RunInterruptible) while the caller's thread runs Python's
+// signal handlers: Ctrl-C stops the work at its next step (the library's CancelCheck,
+// core/progress.h) and raises KeyboardInterrupt, nothing written; a progress callback,
+// when given, is called with the GIL held again. alloycolor::Error
 // becomes the Python exception alloycolor.Error (a ValueError) with the same message, but
 // for the command-line spellings some library messages still carry (--extrapolate,
 // --smoothing, --columns N,K), which are put in the package's words (PythonWords).
@@ -29,6 +32,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -63,6 +67,17 @@ Array ToArray(const std::vector<double>& v);
 
 // A progress callback for the library that calls a Python callable with the GIL held.
 ProgressCallback PythonProgress(const py::object& callback);
+
+// Runs work(cancel) without the GIL on a thread of its own while the calling thread waits
+// for it, running Python's signal handlers (PyErr_CheckSignals, with the GIL) every 20 ms.
+// When a handler raises (Ctrl-C: KeyboardInterrupt), `cancel` throws Cancelled at the
+// work's next check, the work unwinds (its temporaries removed: nothing is written) and
+// the handler's exception is raised here once the work has stopped. An exception of the
+// work itself (an Error, a progress callback's) is rethrown here. Called with the GIL.
+void RunInterruptible(const std::function<void(const CancelCheck& cancel)>& work);
+
+// `progress` (which may be empty) after `cancel`: a progress line is a step of the work.
+ProgressCallback WithCancel(ProgressCallback progress, CancelCheck cancel);
 
 py::object JsonToPython(const nlohmann::json& doc);
 

@@ -82,8 +82,7 @@ py::dict ModelColors(const AlloyModel& model, const Array& x_in, const Array& an
   const bool with_sigma = sigma && model.HasUncertainty();
   ColorArrays arrays = MakeColorArrays(static_cast<py::ssize_t>(xs.size()));
   const ColorPointers p = Pointers(arrays);
-  {
-    py::gil_scoped_release release;
+  RunInterruptible([&](const CancelCheck& cancel) {
     const color::Colorimeter& colorimeter = GetColorimeter(illuminant, observer_deg);
     std::map<double, std::vector<std::size_t>> by_angle;
     for (std::size_t i = 0; i < xs.size(); ++i) by_angle[angles[i]].push_back(i);
@@ -92,13 +91,16 @@ py::dict ModelColors(const AlloyModel& model, const Array& x_in, const Array& an
       double lo = xs[indices[0]], hi = lo;
       for (std::size_t i : indices) lo = std::min(lo, xs[i]), hi = std::max(hi, xs[i]);
       sweep.BuildTableFor(indices.size(), lo, hi, exact);
-      for (std::size_t i : indices) {
+      for (std::size_t k = 0; k < indices.size(); ++k) {
+        // A one-sigma takes draws: each is a step; a table's colours, a block of them.
+        if (with_sigma || k % 4096 == 0) cancel();
+        const std::size_t i = indices[k];
         const color::XYZ xyz = sweep.has_table() ? sweep.XYZAt(xs[i]) : sweep.ExactXYZ(xs[i]);
         Store(color::ColorFromXYZ(colorimeter, xyz), i, p);
         p.sigma[i] = with_sigma ? color::DeltaE00Sigma(colorimeter, model, xs[i], angle) : 0.0;
       }
     }
-  }
+  });
   return ColorDict(arrays, with_sigma);
 }
 
@@ -108,15 +110,15 @@ py::dict SpectrumColors(const NkSpectrum& nk, const Array& angle_in, const std::
   for (double a : angles) CheckAngleDeg("angle_deg", a);
   ColorArrays arrays = MakeColorArrays(static_cast<py::ssize_t>(angles.size()));
   const ColorPointers p = Pointers(arrays);
-  {
-    py::gil_scoped_release release;
+  RunInterruptible([&](const CancelCheck& cancel) {
     const color::Colorimeter& colorimeter = GetColorimeter(illuminant, observer_deg);
     const std::vector<std::complex<double>> index = color::IndexOnGrid(colorimeter, nk);
     for (std::size_t i = 0; i < angles.size(); ++i) {
+      if (i % 4096 == 0) cancel();
       Store(color::ColorFromXYZ(colorimeter, color::MaterialXYZ(colorimeter, index, angles[i])), i,
             p);
     }
-  }
+  });
   return ColorDict(arrays, false);
 }
 
@@ -159,8 +161,7 @@ py::dict ModelMatch(const AlloyModel& model, const Array& lab_in, const std::str
          *pl = lab.mutable_data();
   bool* pr = reachable.mutable_data();
   int* pm = minima.mutable_data();
-  {
-    py::gil_scoped_release release;
+  RunInterruptible([&](const CancelCheck& cancel) {
     color::MatchOptions options;
     options.angle_deg = angle_deg;
     options.target_sigma_de00 = target_sigma;
@@ -174,6 +175,7 @@ py::dict ModelMatch(const AlloyModel& model, const Array& lab_in, const std::str
                 [&](int begin, int end) {
                   const color::ColourMatcher matcher(colorimeter, model, options);
                   for (py::ssize_t i = begin; i < end; ++i) {
+                    cancel();
                     std::vector<color::Match> found =
                         matcher.Find({in[3 * i], in[3 * i + 1], in[3 * i + 2]});
                     const color::Match& best = found.front();
@@ -188,7 +190,7 @@ py::dict ModelMatch(const AlloyModel& model, const Array& lab_in, const std::str
                     if (all_minima) every[i] = std::move(found);
                   }
                 });
-  }
+  });
   py::dict d;
   d["x"] = x;
   d["x_sigma"] = x_sigma;
@@ -223,8 +225,9 @@ py::dict ModelTolerance(const AlloyModel& model, const Array& x_in, double de00,
   const py::ssize_t n = static_cast<py::ssize_t>(xs.size());
   py::array_t<double> low(n), high(n), speed(n);
   py::array_t<bool> clipped_low(n), clipped_high(n);
-  {
-    py::gil_scoped_release release;
+  double *pl = low.mutable_data(), *ph = high.mutable_data(), *ps = speed.mutable_data();
+  bool *pcl = clipped_low.mutable_data(), *pch = clipped_high.mutable_data();
+  RunInterruptible([&](const CancelCheck& cancel) {
     std::vector<color::Colorimeter> colorimeters;
     for (const std::string& name : illuminants) {
       colorimeters.push_back(GetColorimeter(name, observer_deg));
@@ -233,14 +236,15 @@ py::dict ModelTolerance(const AlloyModel& model, const Array& x_in, double de00,
     options.de00 = de00;
     options.angles_deg = angles_deg;
     for (py::ssize_t i = 0; i < n; ++i) {
+      cancel();
       const color::ToleranceWindow w = color::Tolerance(colorimeters, model, xs[i], options);
-      low.mutable_data()[i] = w.x_low;
-      high.mutable_data()[i] = w.x_high;
-      speed.mutable_data()[i] = w.de00_per_x / 100.0;
-      clipped_low.mutable_data()[i] = w.clipped_low;
-      clipped_high.mutable_data()[i] = w.clipped_high;
+      pl[i] = w.x_low;
+      ph[i] = w.x_high;
+      ps[i] = w.de00_per_x / 100.0;
+      pcl[i] = w.clipped_low;
+      pch[i] = w.clipped_high;
     }
-  }
+  });
   py::dict d;
   d["x_low"] = low;
   d["x_high"] = high;

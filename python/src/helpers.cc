@@ -3,9 +3,14 @@
 #include <pybind11/functional.h>
 #include <pybind11/stl.h>
 
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <string_view>
+#include <thread>
 #include <utility>
 
 #include "alloycolor/core/error.h"
@@ -58,6 +63,56 @@ ProgressCallback PythonProgress(const py::object& callback) {
   return [shared](const std::string& message) {
     py::gil_scoped_acquire gil;
     (*shared)(message);
+  };
+}
+
+void RunInterruptible(const std::function<void(const CancelCheck& cancel)>& work) {
+  struct State {
+    std::mutex mutex;
+    std::condition_variable done_changed;
+    bool done = false;
+    std::exception_ptr error;
+    std::atomic<bool> cancelled{false};
+  } state;
+  const CancelCheck cancel = [&state] {
+    if (state.cancelled.load(std::memory_order_relaxed)) throw Cancelled();
+  };
+  std::optional<py::error_already_set> interrupt;  // what a signal handler raised
+  {
+    py::gil_scoped_release release;
+    std::thread worker([&] {
+      try {
+        work(cancel);
+      } catch (...) {
+        state.error = std::current_exception();
+      }
+      const std::lock_guard<std::mutex> lock(state.mutex);
+      state.done = true;
+      state.done_changed.notify_all();
+    });
+    std::unique_lock<std::mutex> lock(state.mutex);
+    constexpr auto kSignalCheck = std::chrono::milliseconds(20);
+    while (!state.done_changed.wait_for(lock, kSignalCheck, [&] { return state.done; })) {
+      if (interrupt) continue;
+      lock.unlock();
+      {
+        py::gil_scoped_acquire gil;
+        if (PyErr_CheckSignals() != 0) interrupt.emplace();  // fetches the exception
+      }
+      if (interrupt) state.cancelled.store(true);
+      lock.lock();
+    }
+    lock.unlock();
+    worker.join();
+  }
+  if (interrupt) throw *interrupt;
+  if (state.error) std::rethrow_exception(state.error);
+}
+
+ProgressCallback WithCancel(ProgressCallback progress, CancelCheck cancel) {
+  return [progress = std::move(progress), cancel = std::move(cancel)](const std::string& line) {
+    cancel();
+    if (progress) progress(line);
   };
 }
 

@@ -27,11 +27,11 @@ py::array_t<std::complex<double>> ModelOptics(const AlloyModel& model, const Arr
   py::array_t<std::complex<double>> out(
       {static_cast<py::ssize_t>(xs.size()), static_cast<py::ssize_t>(lambda_nm.size())});
   std::complex<double>* data = out.mutable_data();
-  {
-    py::gil_scoped_release release;
+  RunInterruptible([&](const CancelCheck& cancel) {
     const std::unique_ptr<BoundModel> bound = model.Bind(lambda_nm);
     std::vector<double> eps1(lambda_nm.size()), eps2(lambda_nm.size());
     for (std::size_t i = 0; i < xs.size(); ++i) {
+      if (i % 256 == 0) cancel();
       bound->Permittivity(xs[i], eps1.data(), eps2.data());
       for (std::size_t j = 0; j < lambda_nm.size(); ++j) {
         const Complex<double> e{eps1[j], eps2[j]};
@@ -39,7 +39,7 @@ py::array_t<std::complex<double>> ModelOptics(const AlloyModel& model, const Arr
         data[i * lambda_nm.size() + j] = {v.re, v.im};
       }
     }
-  }
+  });
   return out;
 }
 
@@ -52,17 +52,17 @@ ModelClass BindModel(py::module_& m) {
     ThreadBudget threads;  // every core, as the program's default
     settings.threads = &threads;
     settings.options = OptionsFromPython(options);
-    settings.progress = PythonProgress(progress);
+    const ProgressCallback python_progress = PythonProgress(progress);
     // As `alloycolor fit`: auto and the sigma calibration score colour under D65, 2 degrees.
     settings.colorimeter = &GetColorimeter("D65", 2);
     // As `alloycolor fit` (--refit): the samples checked, the lineage recorded.
     const fit::FitRecord record{previous.get(), NowUtcIso8601()};
     settings.start = previous && previous->method() == method ? previous.get() : nullptr;
     std::unique_ptr<AlloyModel> model;
-    {
-      py::gil_scoped_release release;
+    RunInterruptible([&](const CancelCheck& cancel) {
+      settings.progress = WithCancel(python_progress, cancel);
       model = fit::FitDataSet(method, dataset, settings, record);
-    }
+    });
     return std::shared_ptr<AlloyModel>(std::move(model));
   });
 
@@ -88,12 +88,12 @@ ModelClass BindModel(py::module_& m) {
              options.rule = color::ParseSuggestRule(rule);
              const color::Colorimeter& cm = GetColorimeter(illuminant, observer);
              color::SuggestResult r;
-             {
-               py::gil_scoped_release release;
+             RunInterruptible([&](const CancelCheck& cancel) {
                ThreadBudget threads;
                options.threads = &threads;
+               options.cancel = cancel;
                r = color::SuggestCompositions(cm, a, options);
-             }
+             });
              py::list out;
              for (const color::Suggestion& s : r.suggestions) {
                py::dict d;

@@ -53,14 +53,15 @@ py::object RenderTile(const IndexOn& index_on, const std::string& label, const s
                            : named("background", render::BackgroundFromName, background);
   render::CheckRenderOptions(options, direct);
   render::LinearImage image;
-  {
-    py::gil_scoped_release release;
+  RunInterruptible([&](const CancelCheck& cancel) {
+    options.cancel = cancel;
     const color::Colorimeter& colorimeter = GetColorimeter(illuminant, observer_deg);
     const render::Renderer renderer(colorimeter, options);
     const render::DirectReflection reflection = renderer.Direct(index_on(colorimeter));
+    cancel();
     image = direct ? renderer.Render(reflection)
                    : renderer.Render(render::GuardedTable(reflection, label).table);
-  }
+  });
   return linear ? py::object(ToNumpy(image)) : py::object(ToNumpy(render::EncodeSRGB8(image)));
 }
 
@@ -82,16 +83,17 @@ py::object WriteExport(const MaterialOn& material_on, const std::string& prefix,
                        OutputGuard& guard) {
   const exports::ExportSettings settings{format, scene_dir, roughness};
   nlohmann::json doc;
-  {
-    py::gil_scoped_release release;
+  RunInterruptible([&](const CancelCheck& cancel) {
     // As `alloycolor export`: the truth under D65, 2 degrees.
     const color::Colorimeter& d65 = GetColorimeter("D65", 2);
     const exports::ExportMaterial material = material_on(d65);
+    cancel();
     const exports::ExportFiles e = exports::BuildExport(d65, material, prefix, settings);
+    cancel();
     WriteFileSetAtomic(e.files, &guard);
     doc = e.summary;
     doc["notes"] = material.spectra.notes;
-  }
+  });
   return JsonToPython(doc);
 }
 
@@ -111,11 +113,12 @@ py::dict WriteExplorer(const AlloyModel& model, const std::string& path,
     }
   }
   exports::ExplorerPage page;
-  {
-    py::gil_scoped_release release;
+  RunInterruptible([&](const CancelCheck& cancel) {
+    options.cancel = cancel;
     page = exports::BuildExplorerPage(model, colorimeters, options);
+    cancel();
     WriteFileAtomic(path, page.html, &guard);
-  }
+  });
   py::dict d;
   d["compositions"] = page.compositions;
   d["angles"] = page.angles;

@@ -51,11 +51,12 @@ void BindValidate(py::module_& m) {
           options.methods = methods;
           options.angles_deg = angles_deg;
           options.mode = mode;
-          const ProgressCallback callback = PythonProgress(progress);
-          options.details = callback;  // a Python caller gets every split's line too
+          const ProgressCallback python_progress = PythonProgress(progress);
           nlohmann::json json;
-          {
-            py::gil_scoped_release release;
+          RunInterruptible([&](const CancelCheck& cancel) {
+            const ProgressCallback callback = WithCancel(python_progress, cancel);
+            options.details = callback;  // a Python caller gets every split's line too
+            options.cancel = cancel;
             const color::Colorimeter& colorimeter = GetColorimeter(illuminant, observer_deg);
             const validate::ValidationReport report =
                 validate::ComputeValidation(dataset, splits, colorimeter, options, callback);
@@ -63,8 +64,9 @@ void BindValidate(py::module_& m) {
             std::vector<OutputFile> files;
             if (!html_path.empty()) files.push_back({html_path, validate::ValidationHtml(report)});
             if (!json_path.empty()) files.push_back({json_path, JsonText(json, 2) + "\n"});
+            cancel();
             if (!files.empty()) WriteFileSetAtomic(files, &guard);
-          }
+          });
           return JsonToPython(json);
         });
 }

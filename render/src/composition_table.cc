@@ -154,6 +154,7 @@ class Builder {
       const int mu_nodes = intervals + 1;
       std::vector<double> worst(xs.size() * colorimeters_.size(), 0.0);
       ParallelFor(static_cast<int>(worst.size()), 1, threads_, [&](int lo, int hi) {
+        CheckCancel(options_.cancel);
         for (int task = lo; task < hi; ++task) {
           const int c = task % static_cast<int>(colorimeters_.size());
           const DirectReflection direct = Direct(c, xs[task / colorimeters_.size()]);
@@ -185,6 +186,7 @@ class Builder {
     for (auto& r : rows) r.resize(static_cast<std::size_t>(intervals + 1) * 3 * mu_nodes);
     const int nc = static_cast<int>(colorimeters_.size());
     ParallelFor((intervals + 1) * nc, 1, threads_, [&](int lo, int hi) {
+      CheckCancel(options_.cancel);
       for (int task = lo; task < hi; ++task) {
         const int c = task % nc, i = task / nc;
         const std::vector<double> row =
@@ -203,6 +205,7 @@ class Builder {
     const int nc = static_cast<int>(colorimeters_.size());
     std::vector<double> worst(static_cast<std::size_t>(intervals) * nc, 0.0);
     ParallelFor(intervals * nc, 1, threads_, [&](int lo, int hi) {
+      CheckCancel(options_.cancel);
       for (int task = lo; task < hi; ++task) {
         const int c = task % nc, i = task / nc;
         const double x = x_lo + (i + 0.5) * (x_hi - x_lo) / intervals;
@@ -276,6 +279,7 @@ class Builder {
       if (sigma) ill.sigma_de00.resize(static_cast<std::size_t>(nodes) * na);
     }
     ParallelFor(nodes * nc, 1, threads_, [&](int lo, int hi) {
+      CheckCancel(options_.cancel);
       for (int task = lo; task < hi; ++task) {
         const int c = task % nc, i = task / nc;
         IlluminantTable& ill = table->illuminants[c];
@@ -314,6 +318,7 @@ class Builder {
     const int mu_checks = 2 * (table->mu_nodes - 1) + 1;
     std::vector<ColourError> errors(xs.size() * nc);
     ParallelFor(static_cast<int>(errors.size()), 4, threads_, [&](int lo, int hi) {
+      CheckCancel(options_.cancel);
       for (int task = lo; task < hi; ++task) {
         const int c = task % nc;
         const double x = xs[task / nc];
@@ -345,6 +350,7 @@ class Builder {
     table->k.resize(nodes * nl);
     table->r_normal.resize(nodes * nl);
     ParallelFor(nodes, 4, threads_, [&](int begin, int end) {
+      CheckCancel(options_.cancel);
       for (int i = begin; i < end; ++i) {
         const auto index = model_.Index(table->x_nodes[i], table->lambda_nm);
         const std::vector<double> r = color::ReflectanceSpectrum(index, 0.0);

@@ -435,6 +435,7 @@ std::unique_ptr<internal::TilePlan> TraceTile(const RenderOptions& options,
   plan->pixels.resize(static_cast<std::size_t>(size) * size);
   plan->blocks.resize((size + kRows - 1) / kRows);
   ParallelFor(size, kRows, ThreadCount(options.threads), [&](int row_begin, int row_end) {
+    CheckCancel(options.cancel);
     internal::TileBlock& block = plan->blocks[row_begin / kRows];
     TileTracer tracer(options.shape, size);
     // Hits at the pixel corners of rows row_begin..row_end.
@@ -582,6 +583,7 @@ LinearImage Renderer::Shade(const ColourAt& rgb) const {
   LinearImage image(size, size);
   constexpr int kRows = internal::TilePlan::kRows;
   ParallelFor(size, kRows, ThreadCount(options_.threads), [&](int row_begin, int row_end) {
+    CheckCancel(options_.cancel);
     const internal::TileBlock& block = plan.blocks[row_begin / kRows];
     const internal::OutlinePixel* outline = block.outline.data();
     const std::size_t begin = static_cast<std::size_t>(row_begin) * size;

@@ -432,6 +432,7 @@ ValidationReport ComputeValidation(const Dataset& dataset, const std::vector<Sam
         report.splits.size(),
         [&](size_t s) {
           SplitResult& split = report.splits[s];
+          CheckCancel(options.cancel);
           std::unique_ptr<AlloyModel> model;
           try {
             model = options.build(method, TrainingOf(all, all_splits[s], in_use));
@@ -448,6 +449,7 @@ ValidationReport ComputeValidation(const Dataset& dataset, const std::vector<Sam
             for (size_t h : holdouts_of[s]) {
               HoldoutResult& holdout = report.holdouts[h];
               const Sample& sample = all.samples[holdout.sample];
+              CheckCancel(options.cancel);
               try {
                 holdout.results[method] = Evaluate(*model, sample, colorimeter, options, &holdout);
               } catch (const Error& e) {
@@ -484,6 +486,7 @@ ValidationReport ComputeValidation(const Dataset& dataset, const std::vector<Sam
   }
   if (!any_method) throw Error(first_error);
   if (options.fit_whole) {
+    CheckCancel(options.cancel);
     const std::string method = options.methods.size() == 1 ? options.methods[0] : "auto";
     Report(progress, "validate: the whole data set with " + method +
                          " (its samples checked, where to measure next)");

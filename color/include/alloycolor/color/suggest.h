@@ -29,6 +29,7 @@
 
 #include "alloycolor/color/colorimetry.h"
 #include "alloycolor/core/parallel.h"
+#include "alloycolor/core/progress.h"
 #include "alloycolor/core/setting.h"
 #include "alloycolor/model/alloy_model.h"
 
@@ -52,6 +53,7 @@ struct SuggestOptions {
   SuggestRule rule = SuggestRule::kLargestSigma;
   double min_distance = kSuggestMinDistance;
   ThreadBudget* threads = nullptr;
+  CancelCheck cancel;  // called at every point of each scan (core/progress.h)
 };
 
 struct Suggestion {

@@ -29,6 +29,7 @@
 
 #include "alloycolor/color/colorimetry.h"
 #include "alloycolor/core/dataset.h"
+#include "alloycolor/core/progress.h"
 #include "alloycolor/core/setting.h"
 #include "alloycolor/model/alloy_model.h"
 
@@ -52,6 +53,8 @@ struct ExplorerOptions {
   // names that data set.
   const Dataset* data = nullptr;
   std::string data_name;
+  // Called between the page's steps and within its tables and scans (core/progress.h).
+  CancelCheck cancel;
 };
 
 // The page and what its tables measured, for the face to report.

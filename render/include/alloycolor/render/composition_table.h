@@ -36,6 +36,7 @@
 #include <vector>
 
 #include "alloycolor/color/colorimetry.h"
+#include "alloycolor/core/progress.h"
 #include "alloycolor/model/alloy_model.h"
 #include "alloycolor/render/shading.h"
 
@@ -54,7 +55,8 @@ struct CompositionTableOptions {
   int min_intervals_per_unit_x = 16;   // starting density of each segment (at least 3)
   int max_intervals_per_unit_x = 128;  // the limit (at least 3 per segment)
   std::vector<double> sigma_angles_deg = {0, 15, 30, 45, 60, 75, 90};
-  int threads = 0;  // 0: one per hardware thread
+  int threads = 0;     // 0: one per hardware thread
+  CancelCheck cancel;  // called before each block of nodes (core/progress.h)
 };
 
 struct CompositionSegment {

@@ -48,6 +48,7 @@
 #include <vector>
 
 #include "alloycolor/color/colorimetry.h"
+#include "alloycolor/core/progress.h"
 #include "alloycolor/core/setting.h"
 #include "alloycolor/model/alloy_model.h"
 #include "alloycolor/render/image.h"
@@ -81,7 +82,8 @@ struct RenderOptions {
   Lighting lighting = Lighting::kStudio;
   double roughness = 0.0;  // GGX alpha, 0 (mirror) to kMaxRoughness
   Background background = Background::kBackdrop;
-  int threads = 0;  // 0: one per hardware thread
+  int threads = 0;     // 0: one per hardware thread
+  CancelCheck cancel;  // called before each block of rows traced or shaded (core/progress.h)
 };
 
 // The picture's settings as every face takes them (the program's render, Python's

@@ -63,6 +63,9 @@ struct ValidationOptions {
   // DescribeWholeDataSet): the face's fit::WholeDataSetFitter; empty: not described. Its
   // method: the one validated, where one is; else auto, as `fit` chooses.
   ModelBuilder fit_whole;
+  // Called before each split's fit and each held-out sample's scores (core/progress.h);
+  // the builders check it within their fits when the face gave it to them too.
+  CancelCheck cancel;
 };
 
 // What one method predicts for one held-out sample.

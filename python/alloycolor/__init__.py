@@ -15,8 +15,9 @@ Units live in the names: ``x`` is the atomic fraction of the system's first elem
 such as ``"75wt%"`` or ``"18k"`` are parsed by ``model.parse_composition``), ``lambda_nm``
 in nanometres, ``angle_deg`` the angle of incidence in degrees. Bad input raises
 :class:`alloycolor.Error` (a ``ValueError``) with the library's one-line message naming the
-file, field or value at fault. Long work runs without the GIL; ``progress`` callbacks receive
-one-line messages, and an exception raised in one stops the work and propagates.
+file, field or value at fault. Long work runs without the GIL, and Ctrl-C stops it at its next
+step with KeyboardInterrupt, nothing written; ``progress`` callbacks receive one-line
+messages, and an exception raised in one stops the work and propagates.
 """
 
 from __future__ import annotations

@@ -6,7 +6,9 @@
 #include <sstream>
 
 #include "alloycolor/core/error.h"
+#include "alloycolor/core/text.h"
 #include "alloycolor/core/units.h"
+#include "alloycolor/model/physical_kernel.h"
 
 namespace alloycolor {
 
@@ -240,6 +242,48 @@ PhysicalModel::PhysicalModel(const nlohmann::json& doc, const std::string& sourc
     }
   }
   Validate(source);
+  CheckWidths(source);
+}
+
+std::string PhysicalModel::NarrowestPole(double* width, double* x_at) const {
+  // Every pole's width at kWidthChecks compositions across the range (the polynomials are
+  // of degree 6 at most: a dip narrower than the steps is not possible without the
+  // neighbouring steps coming near it too), where its centre lies among the model's photon
+  // energies.
+  constexpr int kWidthChecks = 256;
+  const double omega_lo = OmegaEvFromLambdaNm(lambda_max_nm());
+  const double omega_hi = OmegaEvFromLambdaNm(lambda_min_nm());
+  std::string field;
+  *width = HUGE_VAL;
+  *x_at = x_min();
+  double values[kPhysicalMaxParameters];
+  for (int i = 0; i <= kWidthChecks; ++i) {
+    const double x = x_min() + (x_max() - x_min()) * i / kWidthChecks;
+    ValuesAt(x, coeffs_.data(), values);
+    for (int t = 1; t < layout_.num_terms(); ++t) {
+      const TermKind kind = layout_.term_kind(t);
+      if (kind != TermKind::kLorentz && kind != TermKind::kCriticalPoint) continue;
+      const int o = layout_.term_offset(t);  // A, E0, G[, phi]
+      const double e0 = values[o + 1], g = values[o + 2];
+      if (!(e0 >= omega_lo && e0 <= omega_hi) || !(g < *width)) continue;
+      *width = g;
+      *x_at = x;
+      field = "parameters.terms[" + std::to_string(t) + "].parameters[2] (G_eV)";
+    }
+  }
+  return field;
+}
+
+void PhysicalModel::CheckWidths(const std::string& source) const {
+  double width = 0, x = 0;
+  const std::string field = NarrowestPole(&width, &x);
+  if (field.empty() || width >= kPhysicalMinWidthEv) return;
+  throw Error(source + ": " + field + ": the width falls to " + FormatNumber(width) +
+              " eV at x = " + FormatNumber(x) + ", the line's centre among the model's " +
+              "wavelengths; a Lorentz or critical-point line needs " +
+              FormatNumber(kPhysicalMinWidthEv) +
+              " eV at least there (narrower, it is a pole between the wavelengths any colour "
+              "is computed on, and the colour swings from one composition to the next)");
 }
 
 void PhysicalModel::Validate(const std::string& source) const {
@@ -271,32 +315,81 @@ void PhysicalModel::AddWarnings(const std::vector<std::string>& warnings) {
   for (const auto& w : warnings) AddWarning(w);
 }
 
-std::vector<double> PhysicalModel::Values(double x_atomic, const double* coeffs) const {
+void PhysicalModel::ValuesAt(double x_atomic, const double* coeffs, double* values) const {
   double basis[kPhysicalMaxDegree + 1];
   LegendreBasis(BasisArgument(x_atomic), layout_.degree(), basis);
-  std::vector<double> raw(layout_.num_parameters()), values(layout_.num_parameters());
-  PhysicalRawFromCoefficients(layout_, coeffs, basis, raw.data());
-  PhysicalValuesFromRaw(layout_, raw.data(), values.data());
-  return values;
+  double raw[kPhysicalMaxParameters];
+  PhysicalRawFromCoefficients(layout_, coeffs, basis, raw);
+  PhysicalValuesFromRaw(layout_, raw, values);
+}
+
+void PhysicalModel::PermittivityOnGrid(const double* values, std::size_t m, const double* omega_ev,
+                                       double* eps1, double* eps2) const {
+  kernel::PhysicalPermittivityOnGrid(layout_, values, m, omega_ev, eps1, eps2);
+  if (kernel::AllUsable(m, eps1, eps2)) return;
+  for (std::size_t i = 0; i < m; ++i) {
+    const Complex<double> e = PhysicalPermittivity(layout_, values, omega_ev[i]);
+    eps1[i] = e.re;
+    eps2[i] = e.im;
+  }
 }
 
 std::vector<std::complex<double>> PhysicalModel::Evaluate(double x_atomic,
                                                           const std::vector<double>& lambda_nm,
                                                           const double* coeffs) const {
   CheckLambda(lambda_nm);
-  const std::vector<double> values = Values(x_atomic, coeffs);
-  std::vector<std::complex<double>> eps(lambda_nm.size());
-  for (size_t i = 0; i < lambda_nm.size(); ++i) {
-    const Complex<double> e =
-        PhysicalPermittivity(layout_, values.data(), OmegaEvFromLambdaNm(lambda_nm[i]));
-    eps[i] = {e.re, e.im};  // a non-finite part stays so: every output refuses it by name
-  }
+  double values[kPhysicalMaxParameters];
+  ValuesAt(x_atomic, coeffs, values);
+  const std::size_t m = lambda_nm.size();
+  std::vector<double> omega(m), eps1(m), eps2(m);
+  for (std::size_t i = 0; i < m; ++i) omega[i] = OmegaEvFromLambdaNm(lambda_nm[i]);
+  PermittivityOnGrid(values, m, omega.data(), eps1.data(), eps2.data());
+  std::vector<std::complex<double>> eps(m);
+  // A non-finite part stays so: every output refuses it by name.
+  for (std::size_t i = 0; i < m; ++i) eps[i] = {eps1[i], eps2[i]};
   return eps;
 }
 
 std::vector<std::complex<double>> PhysicalModel::Permittivity(
     double x_atomic, const std::vector<double>& lambda_nm) const {
   return Evaluate(x_atomic, lambda_nm, coeffs_.data());
+}
+
+namespace {
+
+// The physical model on a grid: its photon energies once, then per composition the
+// parameter values and the kernel.
+class BoundPhysicalModel : public BoundModel {
+ public:
+  BoundPhysicalModel(const PhysicalModel& model, std::vector<double> lambda_nm)
+      : BoundModel(std::move(lambda_nm)), model_(model) {
+    for (double l : this->lambda_nm()) omega_ev_.push_back(OmegaEvFromLambdaNm(l));
+  }
+  void Permittivity(double x_atomic, double* eps1, double* eps2) const override {
+    double values[kPhysicalMaxParameters];
+    model_.ValuesAt(x_atomic, model_.coeffs().data(), values);
+    const std::size_t m = omega_ev_.size();
+    kernel::PhysicalPermittivityOnGrid(model_.layout(), values, m, omega_ev_.data(), eps1, eps2);
+    if (kernel::AllUsable(m, eps1, eps2)) return;
+    // Where the kernel gives up, the straightforward way; an unusable value is refused.
+    model_.PermittivityOnGrid(values, m, omega_ev_.data(), eps1, eps2);
+    for (std::size_t i = 0; i < m; ++i) {
+      if (!UsablePermittivity(eps1[i], eps2[i])) {
+        model_.FailUnusable(x_atomic, lambda_nm()[i], {eps1[i], eps2[i]}, false);
+      }
+    }
+  }
+
+ private:
+  const PhysicalModel& model_;
+  std::vector<double> omega_ev_;
+};
+
+}  // namespace
+
+std::unique_ptr<BoundModel> PhysicalModel::Bind(const std::vector<double>& lambda_nm) const {
+  CheckLambda(lambda_nm);
+  return std::make_unique<BoundPhysicalModel>(*this, lambda_nm);
 }
 
 std::vector<std::vector<std::complex<double>>> PhysicalModel::PermittivityDraws(
@@ -327,7 +420,8 @@ std::vector<std::vector<std::complex<double>>> PhysicalModel::PermittivityDraws(
 std::vector<PhysicalParameterValue> PhysicalModel::ParameterValues(double x_atomic) const {
   const int np = layout_.num_parameters();
   const int nc = layout_.num_coefficients();
-  const std::vector<double> values = Values(x_atomic, coeffs_.data());
+  std::vector<double> values(np);
+  ValuesAt(x_atomic, coeffs_.data(), values.data());
   std::vector<double> sigma(np, 0.0);
   if (!covariance_.empty()) {
     // d value / d coefficient by central differences (the maps are smooth).
@@ -336,9 +430,10 @@ std::vector<PhysicalParameterValue> PhysicalModel::ParameterValues(double x_atom
     for (int j = 0; j < nc; ++j) {
       const double h = 1e-6 * std::max(1.0, std::abs(coeffs_[j]));
       c[j] = coeffs_[j] + h;
-      const std::vector<double> plus = Values(x_atomic, c.data());
+      std::vector<double> plus(np), minus(np);
+      ValuesAt(x_atomic, c.data(), plus.data());
       c[j] = coeffs_[j] - h;
-      const std::vector<double> minus = Values(x_atomic, c.data());
+      ValuesAt(x_atomic, c.data(), minus.data());
       c[j] = coeffs_[j];
       for (int k = 0; k < np; ++k) jac(k, j) = (plus[k] - minus[k]) / (2 * h);
     }

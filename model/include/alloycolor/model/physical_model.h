@@ -45,6 +45,7 @@
 #include "alloycolor/model/alloy_model.h"
 #include "alloycolor/model/legendre.h"
 #include "alloycolor/model/optics.h"
+#include "alloycolor/model/physical_terms.h"
 
 namespace alloycolor {
 
@@ -52,8 +53,13 @@ inline constexpr int kPhysicalMaxDegree = 6;
 inline constexpr int kPhysicalMaxInterbandTerms = 6;
 inline constexpr int kPhysicalMaxParameters = 3 + 4 * kPhysicalMaxInterbandTerms;
 inline constexpr double kPhysicalPositiveScale = 1e-3;
-
-enum class TermKind { kDrude, kLorentz, kCriticalPoint, kRiouxGap, kRiouxEdge };
+// The narrowest Lorentz or critical-point line (G, eV) a model file may give where its
+// centre lies among the model's photon energies, anywhere in its composition range: a
+// width far below the 5 nm colour grid's spacing (0.01-0.05 eV) is a pole that the grid
+// samples by chance (A E0 / G at the centre). Rioux et al.'s terms have logarithmic
+// onsets, no pole, and no floor (fits of Au-Ag narrow them to 1e-7 eV where the data do
+// not resolve them).
+inline constexpr double kPhysicalMinWidthEv = 1e-3;
 
 // "drude", "lorentz", "cp", "rioux-gap", "rioux-edge".
 const char* TermKindName(TermKind kind);
@@ -158,94 +164,6 @@ void PhysicalRawFromCoefficients(const PhysicalLayout& layout, const T* coeffs, 
   }
 }
 
-// Complex arithmetic the interband terms need, on explicit real and imaginary parts so it
-// runs with ceres::Jet (principal branches).
-namespace complex_ops {
-
-template <typename T>
-Complex<T> Divide(const Complex<T>& a, const Complex<T>& b) {
-  const T d = b.re * b.re + b.im * b.im;
-  return {(a.re * b.re + a.im * b.im) / d, (a.im * b.re - a.re * b.im) / d};
-}
-template <typename T>
-Complex<T> Log(const Complex<T>& z) {
-  using std::atan2;
-  using std::log;
-  return {T(0.5) * log(z.re * z.re + z.im * z.im), atan2(z.im, z.re)};
-}
-// atanh z = (ln(1 + z) - ln(1 - z)) / 2: cuts on the real axis beyond +-1.
-template <typename T>
-Complex<T> Atanh(const Complex<T>& z) {
-  const Complex<T> a = Log(Complex<T>{T(1.0) + z.re, z.im});
-  const Complex<T> b = Log(Complex<T>{T(1.0) - z.re, -z.im});
-  return {(a.re - b.re) * T(0.5), (a.im - b.im) * T(0.5)};
-}
-// atan z = -i atanh(i z): cuts on the imaginary axis beyond +-i.
-template <typename T>
-Complex<T> Atan(const Complex<T>& z) {
-  const Complex<T> h = Atanh(Complex<T>{-z.im, z.re});
-  return {h.im, -h.re};
-}
-
-}  // namespace complex_ops
-
-// One interband term of the header at photon energy w; v points at the term's parameters.
-template <typename T>
-Complex<T> InterbandPermittivity(TermKind kind, const T* v, double omega_ev) {
-  using complex_ops::Atan;
-  using complex_ops::Atanh;
-  using complex_ops::Divide;
-  using complex_ops::Log;
-  using std::cos;
-  using std::log;
-  using std::sin;
-  using std::sqrt;
-  const T w(omega_ev);
-  switch (kind) {
-    case TermKind::kLorentz: {  // A, E0, G
-      const T e2 = v[1] * v[1];
-      const Complex<T> num{v[0] * e2, T(0.0)};
-      return Divide(num, Complex<T>{e2 - w * w, -w * v[2]});
-    }
-    case TermKind::kCriticalPoint: {  // A, E0, G, phi
-      const T c = cos(v[3]), s = sin(v[3]);
-      const Complex<T> a = Divide(Complex<T>{c, s}, Complex<T>{v[1] - w, -v[2]});
-      const Complex<T> b = Divide(Complex<T>{c, -s}, Complex<T>{v[1] + w, v[2]});
-      const T scale = v[0] * v[1];
-      return {scale * (a.re + b.re), scale * (a.im + b.im)};
-    }
-    case TermKind::kRiouxGap: {  // A, E0, Eg, G
-      const T e0 = v[1], eg = v[2];
-      const T r = sqrt(eg - e0);
-      const Complex<T> c{w, v[3]};
-      const Complex<T> c2 = c * c;
-      const Complex<T> s1 = Sqrt(Complex<T>{w - eg, v[3]});
-      const Complex<T> s2 = Sqrt(Complex<T>{w + eg, v[3]});
-      const Complex<T> rc{r, T(0.0)};
-      const Complex<T> t1 = s1 * Atan(Divide(rc, s1));
-      const Complex<T> t2 = s2 * Atanh(Divide(rc, s2));
-      const T y = r / sqrt(eg);
-      const T t3 = T(2.0) * sqrt(eg) * T(0.5) * log((T(1.0) + y) / (T(1.0) - y));
-      const Complex<T> lg = Log(Complex<T>{T(1.0) - c2.re / (e0 * e0), -c2.im / (e0 * e0)});
-      const Complex<T> bracket{-t1.re - t2.re + t3 - T(0.5) * r * lg.re,
-                               -t1.im - t2.im - T(0.5) * r * lg.im};
-      const Complex<T> q = Divide(bracket, c2);
-      return {v[0] * q.re, v[0] * q.im};
-    }
-    case TermKind::kRiouxEdge: {  // A, E0, G
-      const T e0 = v[1];
-      const Complex<T> c{w, v[2]};
-      const Complex<T> c2 = c * c;
-      const Complex<T> lg = Log(Complex<T>{T(1.0) - c2.re / (e0 * e0), -c2.im / (e0 * e0)});
-      const Complex<T> q = Divide(lg, c2);
-      return {T(-0.5) * v[0] * q.re, T(-0.5) * v[0] * q.im};
-    }
-    case TermKind::kDrude:
-      break;
-  }
-  return {T(0.0), T(0.0)};
-}
-
 // One term of the header (the Drude term or an interband one) at photon energy w; v points
 // at the term's parameters (layout order).
 template <typename T>
@@ -254,7 +172,9 @@ Complex<T> TermPermittivity(TermKind kind, const T* v, double omega_ev) {
   return InterbandPermittivity(kind, v, omega_ev);
 }
 
-// eps of the header from parameter values (layout order) at photon energy w.
+// eps of the header from parameter values (layout order) at photon energy w: the
+// straightforward evaluation, one wavelength at a time (PhysicalModel evaluates many at once
+// through the kernel, equal to this to rounding).
 template <typename T>
 Complex<T> PhysicalPermittivity(const PhysicalLayout& layout, const T* values, double omega_ev) {
   Complex<T> eps{T(0.0), T(0.0)};
@@ -286,6 +206,9 @@ class PhysicalModel : public AlloyModel {
   std::string method() const override { return "physical"; }
   std::vector<std::complex<double>> Permittivity(
       double x_atomic, const std::vector<double>& lambda_nm) const override;
+  // Bound to a grid: per composition the parameters' polynomials once, then eps over the
+  // grid in the wavelength kernel (physical_kernel.h).
+  std::unique_ptr<BoundModel> Bind(const std::vector<double>& lambda_nm) const override;
   // The cross-validated prediction error where the fit estimated one (AlloyModel), else
   // draws of the coefficients from their covariance.
   bool HasUncertaintyTerms() const override {
@@ -300,11 +223,22 @@ class PhysicalModel : public AlloyModel {
   std::vector<double> FittedCoefficients() const override { return coeffs_; }
   const std::vector<double>& covariance() const { return covariance_; }
   double BasisArgument(double x_atomic) const;
+  // Every parameter's value at x (layout order) from the coefficients (coeffs() or a draw
+  // of them), into values[0..layout().num_parameters()).
+  void ValuesAt(double x_atomic, const double* coeffs, double* values) const;
+  // eps at the photon energies omega_ev[0..m) from parameter values, into eps1, eps2: the
+  // kernel, or where it gives up (physical_kernel.h) PhysicalPermittivity at every one.
+  void PermittivityOnGrid(const double* values, std::size_t m, const double* omega_ev, double* eps1,
+                          double* eps2) const;
   // Every parameter's value at x, with one-sigma from the coefficients' covariance.
   std::vector<PhysicalParameterValue> ParameterValues(double x_atomic) const;
   // wp, gamma, tau, N_e, m*/m_e, eps_inf and each interband term's centre (eV and nm), gap
   // and width, with one-sigma from the covariance (first-order propagation).
   ParameterTable Parameters(const std::vector<double>& x_atomic) const override;
+  // The narrowest width G of a Lorentz or critical-point line whose centre lies among the
+  // model's photon energies, over the composition range, where, and the model file's field
+  // that gives it ("" where there is none).
+  std::string NarrowestPole(double* width_ev, double* x_atomic) const;
   // Adds fit diagnostics to warnings().
   void AddWarnings(const std::vector<std::string>& warnings);
 
@@ -313,7 +247,10 @@ class PhysicalModel : public AlloyModel {
 
  private:
   void Validate(const std::string& source) const;
-  std::vector<double> Values(double x_atomic, const double* coeffs) const;
+  // Throws Error naming the file and the field where a pole's width falls below
+  // kPhysicalMinWidthEv (NarrowestPole; a model file's check; fits check it last of their
+  // checks for leaving physics).
+  void CheckWidths(const std::string& source) const;
   std::vector<std::complex<double>> Evaluate(double x_atomic, const std::vector<double>& lambda_nm,
                                              const double* coeffs) const;
 

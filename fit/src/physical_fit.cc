@@ -2,11 +2,9 @@
 
 #include <ceres/ceres.h>
 
-#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
-#include <map>
-#include <mutex>
+#include <iterator>
 #include <sstream>
 
 #include "alloycolor/core/error.h"
@@ -15,595 +13,24 @@
 #include "alloycolor/core/progress.h"
 #include "alloycolor/core/text.h"
 #include "alloycolor/core/units.h"
-#include "alloycolor/fit/physical_costs.h"
 #include "alloycolor/model/optics.h"
+#include "physical_problem.h"
 
 namespace alloycolor::fit {
 namespace {
 
-constexpr int kEndStarts = 3;        // grid-search starts refined per end sample
+using physical::AddQuadraticStarts;
+using physical::Basis;
+using physical::Bounds;
+using physical::FitData;
+using physical::FitEndSample;
+using physical::FitProblem;
+using physical::MakeBounds;
+using physical::PrepareData;
+using physical::SampleData;
+using physical::SolveResult;
+
 constexpr int kRaceIterations = 30;  // joint starts race this far before the best goes on
-
-// The data of one sample on the fit grid: every finite point.
-struct SampleData {
-  double x;
-  std::string file;
-  std::vector<double> omega_ev;
-  std::vector<double> lambda_nm;
-  std::vector<std::complex<double>> eps;
-};
-
-struct FitData {
-  std::vector<double> grid_nm;
-  double omega_min = 0, omega_max = 0;
-  bool infrared = false;
-  std::vector<SampleData> samples;
-  std::vector<std::string> warnings;
-};
-
-FitData PrepareData(const Dataset& dataset, const PhysicalFitOptions& options) {
-  const WavelengthRange range = CommonRange(dataset);
-  const double lo = range.lo_nm, hi = range.hi_nm;
-  FitData data;
-  double from = options.lambda_from_nm, to = options.lambda_to_nm;
-  if (from == 0 && to == 0) {
-    from = std::max(lo, 300.0);
-    to = std::min(hi, 1000.0);
-    if (!(to - from >= 200.0)) {
-      from = lo;
-      to = hi;
-    }
-  } else if (!(from > 0 && to > from)) {
-    throw Error("physical fit: the wavelength range needs 0 < from < to");
-  }
-  data.infrared = from >= 1000.0 - 1e-9;
-  double step = options.lambda_step_nm;
-  if (step == 0) step = data.infrared ? (to - from) / 200.0 : kGridStepNm;
-  if (!(step > 0) || (to - from) / step > 1e5) {
-    throw Error("physical fit: the wavelength step must be positive (and not tiny)");
-  }
-  data.grid_nm = UniformGrid(from, to, step);
-  if (data.grid_nm.size() < 3) {
-    throw Error("physical fit: the wavelength grid needs 3 points or more");
-  }
-  data.omega_min = OmegaEvFromLambdaNm(data.grid_nm.back());
-  data.omega_max = OmegaEvFromLambdaNm(data.grid_nm.front());
-  for (const Sample& s : dataset.samples) {
-    if (!s.nk.Covers(data.grid_nm.front(), data.grid_nm.back())) {
-      std::ostringstream msg;
-      msg << s.file << ": covers " << s.nk.lambda_min_nm() << "-" << s.nk.lambda_max_nm()
-          << " nm, the fit needs " << data.grid_nm.front() << "-" << data.grid_nm.back() << " nm";
-      throw Error(msg.str());
-    }
-    SampleData sd;
-    sd.x = s.x_atomic;
-    sd.file = s.file;
-    int dropped = 0;
-    for (double l : data.grid_nm) {
-      const std::complex<double> nk = NkAt(s.nk, l);
-      const std::complex<double> e = nk * nk;
-      if (!std::isfinite(e.real()) || !std::isfinite(e.imag()) || std::abs(e) == 0.0) {
-        ++dropped;
-        continue;
-      }
-      sd.lambda_nm.push_back(l);
-      sd.omega_ev.push_back(OmegaEvFromLambdaNm(l));
-      sd.eps.push_back(e);
-    }
-    if (dropped > 0) {
-      data.warnings.push_back(s.file + ": " + std::to_string(dropped) +
-                              " wavelengths with eps zero or not finite left out");
-    }
-    if (sd.eps.empty()) throw Error(s.file + ": no usable data in the fit range");
-    data.samples.push_back(std::move(sd));
-  }
-  return data;
-}
-
-struct Basis {
-  double x_lo, x_hi;
-  double U(double x) const { return CompositionArgument(x, x_lo, x_hi); }
-};
-
-// Upper limit of a positive parameter's constant coefficient.
-double UpperLimit(const PhysicalParameter& p, double omega_max) {
-  const std::string name = p.name;
-  if (name == "eps_inf") return 100.0;
-  if (name == "wp_eV") return 50.0;
-  if (name == "gamma_eV" || name == "G_eV") return 10.0;
-  if (name == "A") return 1e4;
-  return 3.0 * omega_max;  // E0_eV, Eg_eV
-}
-
-struct Bounds {
-  std::vector<double> lower, upper;  // per coefficient; +-inf where unbounded
-};
-
-Bounds MakeBounds(const PhysicalLayout& layout, double omega_max) {
-  const int nb = layout.basis_size();
-  Bounds b;
-  b.lower.assign(layout.num_coefficients(), -HUGE_VAL);
-  b.upper.assign(layout.num_coefficients(), HUGE_VAL);
-  for (int k = 0; k < layout.num_parameters(); ++k) {
-    const PhysicalParameter& p = layout.parameters()[k];
-    if (p.map == ParameterMap::kFree) {
-      for (int d = 0; d < nb; ++d) {
-        b.lower[k * nb + d] = -kPi;
-        b.upper[k * nb + d] = kPi;
-      }
-    } else {
-      b.lower[k * nb] = 0.0;
-      b.upper[k * nb] = UpperLimit(p, omega_max);
-    }
-  }
-  return b;
-}
-
-struct SolveResult {
-  std::vector<double> coeffs;
-  double cost = 0;
-  int iterations = 0;
-  bool converged = false;
-  std::string termination;
-};
-
-// One Ceres problem over some samples: the joint fit, or an end sample alone.
-class FitProblem {
- public:
-  FitProblem(const PhysicalLayout& layout, const std::vector<const SampleData*>& samples,
-             const Basis& basis, const Bounds& bounds, std::vector<double> start)
-      : coeffs_(std::move(start)) {
-    for (size_t i = 0; i < coeffs_.size(); ++i) {
-      coeffs_[i] = std::clamp(coeffs_[i], bounds.lower[i], bounds.upper[i]);
-    }
-    double* block = coeffs_.data();
-    problem_.AddParameterBlock(block, static_cast<int>(coeffs_.size()));
-    for (size_t i = 0; i < coeffs_.size(); ++i) {
-      if (std::isfinite(bounds.lower[i])) {
-        problem_.SetParameterLowerBound(block, static_cast<int>(i), bounds.lower[i]);
-      }
-      if (std::isfinite(bounds.upper[i])) {
-        problem_.SetParameterUpperBound(block, static_cast<int>(i), bounds.upper[i]);
-      }
-    }
-    for (const SampleData* s : samples) {
-      double p[kPhysicalMaxDegree + 1];
-      LegendreBasis(layout.basis_size() == 1 ? 0.0 : basis.U(s->x), layout.degree(), p);
-      problem_.AddResidualBlock(CreatePhysicalSampleCost(layout, p, s->omega_ev, s->eps), nullptr,
-                                block);
-      residuals_ += 2 * s->eps.size();
-      block_sizes_.push_back(2 * s->eps.size());
-    }
-  }
-
-  SolveResult Solve(int max_iterations, double tolerance) {
-    ceres::Solver::Options options;
-    // One dense parameter block: Eigen dense normal equations, no threads, the same bytes
-    // every run.
-    options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
-    options.dense_linear_algebra_library_type = ceres::EIGEN;
-    options.max_num_iterations = max_iterations;
-    options.function_tolerance = tolerance;
-    options.gradient_tolerance = tolerance * 1e-2;
-    options.parameter_tolerance = tolerance;
-    options.num_threads = 1;
-    options.logging_type = ceres::SILENT;
-    ceres::Solver::Summary summary;
-    ceres::Solve(options, &problem_, &summary);
-    SolveResult r;
-    r.coeffs = coeffs_;
-    r.cost = summary.termination_type == ceres::FAILURE ? HUGE_VAL : summary.final_cost;
-    if (!std::isfinite(r.cost)) r.cost = HUGE_VAL;
-    r.iterations = static_cast<int>(summary.iterations.size()) - 1;
-    r.converged = summary.termination_type == ceres::CONVERGENCE;
-    r.termination = ceres::TerminationTypeToString(summary.termination_type);
-    return r;
-  }
-
-  // The covariance of the coefficients, unscaled ((J^T J)^-1, or its pseudo-inverse when
-  // J is rank-deficient); empty if it fails. *pseudo_inverse says whether J is
-  // rank-deficient: lambda_min / lambda_max of J^T J below the Ceres default
-  // min_reciprocal_condition_number (1e-14). Asked for the pseudo-inverse directly
-  // (null_space_rank = -1), Ceres drops exactly those eigenvalues, and for a well-
-  // conditioned J that is the plain inverse; this way it never logs a failed attempt.
-  std::vector<double> Covariance(bool* pseudo_inverse) {
-    const int nc = static_cast<int>(coeffs_.size());
-    ceres::CRSMatrix crs;
-    problem_.Evaluate(ceres::Problem::EvaluateOptions(), nullptr, nullptr, nullptr, &crs);
-    Eigen::MatrixXd jtj = Eigen::MatrixXd::Zero(nc, nc);
-    for (int row = 0; row < crs.num_rows; ++row) {
-      for (int a = crs.rows[row]; a < crs.rows[row + 1]; ++a) {
-        for (int b = crs.rows[row]; b < crs.rows[row + 1]; ++b) {
-          jtj(crs.cols[a], crs.cols[b]) += crs.values[a] * crs.values[b];
-        }
-      }
-    }
-    const Eigen::VectorXd eigenvalues =
-        Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(jtj, Eigen::EigenvaluesOnly).eigenvalues();
-    const double min_reciprocal_condition = 1e-14;
-    *pseudo_inverse =
-        !(eigenvalues.minCoeff() >= min_reciprocal_condition * eigenvalues.maxCoeff());
-    ceres::Covariance::Options options;
-    options.algorithm_type = ceres::DENSE_SVD;
-    options.min_reciprocal_condition_number = min_reciprocal_condition;
-    options.null_space_rank = -1;
-    options.num_threads = 1;
-    ceres::Covariance covariance(options);
-    const std::vector<std::pair<const double*, const double*>> blocks = {
-        {coeffs_.data(), coeffs_.data()}};
-    std::vector<double> out(static_cast<size_t>(nc) * nc);
-    if (!covariance.Compute(blocks, &problem_) ||
-        !covariance.GetCovarianceBlock(coeffs_.data(), coeffs_.data(), out.data())) {
-      return {};
-    }
-    return out;
-  }
-
-  size_t residuals() const { return residuals_; }
-
-  // Lag-1 autocorrelation of the residuals along wavelength, real and imaginary parts
-  // apart, pooled over the samples: rho = sum r_i r_(i+1) / sum r_i^2.
-  double ResidualAutocorrelation() {
-    std::vector<double> r;
-    problem_.Evaluate(ceres::Problem::EvaluateOptions(), nullptr, &r, nullptr, nullptr);
-    double num = 0, den = 0;
-    size_t at = 0;
-    for (size_t size : block_sizes_) {
-      for (size_t i = 0; i < size; ++i) {
-        den += r[at + i] * r[at + i];
-        if (i + 2 < size) num += r[at + i] * r[at + i + 2];
-      }
-      at += size;
-    }
-    return den > 0 ? num / den : 0.0;
-  }
-
- private:
-  std::vector<double> coeffs_;
-  ceres::Problem problem_;
-  size_t residuals_ = 0;
-  std::vector<size_t> block_sizes_;
-};
-
-// Grid search for an end sample's starting points (degree 0, so coefficients are the r
-// values). eps is linear in eps_inf, wp^2, each term's A (and, for a critical point, in
-// A cos phi and A sin phi), so for every combination of the other parameters on a grid
-// (gamma; each term's E0, G and, for rioux-gap, Eg - E0) those follow from a small
-// weighted linear least-squares problem, solved from a cached Gram matrix. The best
-// combinations with distinct centres are the starts.
-class GridSearch {
- public:
-  GridSearch(const PhysicalLayout& layout, const SampleData& s, const FitData& data)
-      : layout_(layout), m_(s.eps.size()) {
-    y_.resize(2 * m_);
-    w_.resize(m_);
-    for (size_t i = 0; i < m_; ++i) {
-      w_[i] = 1.0 / std::abs(s.eps[i]);
-      y_[i] = s.eps[i].real() * w_[i];
-      y_[m_ + i] = s.eps[i].imag() * w_[i];
-    }
-    omega_ = s.omega_ev;
-    // gamma from the pointwise inversion at the lowest photon energy.
-    size_t low = 0;
-    for (size_t i = 1; i < m_; ++i) {
-      if (omega_[i] < omega_[low]) low = i;
-    }
-    double gamma = 0.1;
-    if (DrudeInvertible(s.eps[low].real(), s.eps[low].imag())) {
-      gamma = std::clamp(InvertDrude(omega_[low], s.eps[low].real(), s.eps[low].imag()).gamma_ev,
-                         0.005, 3.0);
-    }
-    AddColumn([](double) { return std::complex<double>(1.0, 0.0); });  // eps_inf
-    for (double f : {0.5, 1.0, 2.0}) {
-      gammas_.push_back(gamma * f);
-      const double g = gamma * f;
-      AddColumn([g](double w) { return -1.0 / (w * std::complex<double>(w, g)); });
-    }
-    const double span = data.omega_max - data.omega_min;
-    for (int i = 0; i < kCentres; ++i) {
-      centres_.push_back(data.omega_min + span * (0.02 + 1.13 * i / (kCentres - 1)));
-    }
-    // Candidates of each term, by kind (terms of one kind share them).
-    for (int t = 1; t < layout.num_terms(); ++t) {
-      const TermKind kind = layout.term_kind(t);
-      if (candidates_.count(kind)) continue;
-      std::vector<Candidate>& list = candidates_[kind];
-      for (int e = 0; e < kCentres; ++e) {
-        for (double g : {0.05, 0.15, 0.5, 1.5}) {
-          const std::vector<double> gaps = kind == TermKind::kRiouxGap
-                                               ? std::vector<double>{0.1, 0.3, 1.0}
-                                               : std::vector<double>{0.0};
-          for (double gap : gaps) {
-            Candidate c{e,
-                        centres_[e],
-                        g,
-                        gap,
-                        static_cast<int>(columns_.size()),
-                        kind == TermKind::kCriticalPoint ? 2 : 1};
-            // The term with A = 1 (phase 0, then pi/2 for a critical point).
-            double v[4] = {1.0, c.e0, 0.0, 0.0};
-            if (kind == TermKind::kRiouxGap) {
-              v[2] = c.e0 + gap;
-              v[3] = g;
-            } else {
-              v[2] = g;
-            }
-            AddColumn([&](double w) { return ToStd(InterbandPermittivity(kind, v, w)); });
-            if (kind == TermKind::kCriticalPoint) {
-              v[3] = kPi / 2;
-              AddColumn([&](double w) { return ToStd(InterbandPermittivity(kind, v, w)); });
-            }
-            list.push_back(c);
-          }
-        }
-      }
-    }
-    const int nc = static_cast<int>(columns_.size());
-    Eigen::MatrixXd bank(2 * m_, nc);
-    for (int c = 0; c < nc; ++c) bank.col(c) = columns_[c];
-    gram_ = bank.transpose() * bank;
-    rhs_ = bank.transpose() * y_;
-    yy_ = y_.squaredNorm();
-  }
-
-  // Up to `count` starts (r values), best grid residual first, with distinct centres.
-  // windows, if given, holds for each interband term the range [lo, hi] of E0 (eV) its
-  // candidates must lie in.
-  std::vector<std::vector<double>> Starts(
-      int count, const std::vector<std::pair<double, double>>& windows = {}) {
-    windows_ = windows;
-    const int terms = layout_.num_terms() - 1;
-    std::vector<int> pick(terms, 0);
-    std::vector<Scored> scored;
-    for (size_t g = 0; g < gammas_.size(); ++g) {
-      std::fill(pick.begin(), pick.end(), 0);
-      while (true) {
-        if (Ordered(pick)) Score(static_cast<int>(g), pick, &scored);
-        int t = terms - 1;
-        while (t >= 0 && ++pick[t] == static_cast<int>(Candidates(t + 1).size())) pick[t--] = 0;
-        if (t < 0) break;
-      }
-    }
-    std::stable_sort(scored.begin(), scored.end(),
-                     [](const Scored& a, const Scored& b) { return a.residual < b.residual; });
-    std::vector<std::vector<double>> starts;
-    std::vector<std::vector<int>> seen;
-    for (const Scored& s : scored) {
-      std::vector<int> centres;
-      for (int t = 0; t < terms; ++t) centres.push_back(Candidates(t + 1)[s.pick[t]].centre);
-      if (std::find(seen.begin(), seen.end(), centres) != seen.end()) continue;
-      seen.push_back(centres);
-      starts.push_back(StartOf(s));
-      if (static_cast<int>(starts.size()) == count) break;
-    }
-    return starts;
-  }
-
- private:
-  static constexpr int kCentres = 12;
-  static constexpr int kMaxColumns = 2 + 2 * kPhysicalMaxInterbandTerms;
-
-  struct Candidate {
-    int centre;  // index in centres_
-    double e0, g, gap;
-    int column, columns;
-  };
-  struct Scored {
-    double residual;
-    int gamma;
-    std::vector<int> pick;
-    std::vector<double> solution;  // eps_inf, wp^2, then each term's linear coefficients
-  };
-
-  template <typename T>
-  static std::complex<double> ToStd(const Complex<T>& z) {
-    return {z.re, z.im};
-  }
-
-  template <typename F>
-  void AddColumn(F f) {
-    Eigen::VectorXd c(2 * m_);
-    for (size_t i = 0; i < m_; ++i) {
-      const std::complex<double> v = f(omega_[i]);
-      c[i] = v.real() * w_[i];
-      c[m_ + i] = v.imag() * w_[i];
-    }
-    columns_.push_back(std::move(c));
-  }
-
-  const std::vector<Candidate>& Candidates(int term) const {
-    return candidates_.at(layout_.term_kind(term));
-  }
-
-  // Terms of one kind in increasing order of centre, each centre used once; centres in
-  // their windows.
-  bool Ordered(const std::vector<int>& pick) const {
-    for (size_t t = 0; t < pick.size(); ++t) {
-      if (!windows_.empty()) {
-        const double e0 = Candidates(static_cast<int>(t) + 1)[pick[t]].e0;
-        if (e0 < windows_[t].first || e0 > windows_[t].second) return false;
-      }
-      for (size_t u = 0; u < t; ++u) {
-        if (layout_.interband()[t] == layout_.interband()[u] &&
-            !(Candidates(t + 1)[pick[t]].centre > Candidates(u + 1)[pick[u]].centre)) {
-          return false;
-        }
-      }
-    }
-    return true;
-  }
-
-  void Score(int gamma, const std::vector<int>& pick, std::vector<Scored>* out) const {
-    using Small =
-        Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxColumns, kMaxColumns>;
-    using SmallVec = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxColumns, 1>;
-    int cols[kMaxColumns];
-    int n = 0;
-    cols[n++] = 0;
-    cols[n++] = 1 + gamma;
-    for (size_t t = 0; t < pick.size(); ++t) {
-      const Candidate& c = Candidates(static_cast<int>(t) + 1)[pick[t]];
-      for (int j = 0; j < c.columns; ++j) cols[n++] = c.column + j;
-    }
-    // eps_inf >= 1: solve freely, or with eps_inf = 1 when that is violated.
-    for (int fixed = 0; fixed < 2; ++fixed) {
-      const int first = fixed;  // with eps_inf fixed, column 0 leaves the unknowns
-      const int k = n - first;
-      Small a(k, k);
-      SmallVec b(k);
-      for (int i = 0; i < k; ++i) {
-        b[i] = rhs_[cols[first + i]] - (fixed ? gram_(cols[first + i], 0) : 0.0);
-        for (int j = 0; j < k; ++j) a(i, j) = gram_(cols[first + i], cols[first + j]);
-      }
-      for (int i = 0; i < k; ++i) a(i, i) *= 1.0 + 1e-12;
-      const SmallVec x = a.ldlt().solve(b);
-      if (!x.allFinite()) return;
-      const double eps_inf = fixed ? 1.0 : x[0];
-      if (!fixed && eps_inf < 1.0) continue;
-      const double wp2 = x[1 - first];
-      if (!(wp2 > 0)) return;
-      // Non-negative strengths (a critical point's sign lives in its phase).
-      int at = 2;
-      for (size_t t = 0; t < pick.size(); ++t) {
-        const Candidate& c = Candidates(static_cast<int>(t) + 1)[pick[t]];
-        if (c.columns == 1 && x[at - first] < 0) return;
-        at += c.columns;
-      }
-      // Residual: yy - 2 x.b_full + x' G x, with the fixed eps_inf folded in.
-      double residual = yy_ - 2.0 * x.dot(b) + x.dot(a * x);
-      if (fixed) residual += gram_(0, 0) - 2.0 * rhs_[0];
-      Scored s{residual, gamma, pick, {}};
-      s.solution.push_back(eps_inf);
-      for (int i = 1 - first; i < k; ++i) s.solution.push_back(x[i]);
-      out->push_back(std::move(s));
-      return;
-    }
-  }
-
-  std::vector<double> StartOf(const Scored& s) const {
-    const int np = layout_.num_parameters();
-    std::vector<double> v(np, 0.0), r(np, 0.0);
-    v[0] = s.solution[0];
-    v[1] = std::sqrt(s.solution[1]);
-    v[2] = gammas_[s.gamma];
-    int at = 2;
-    for (int t = 1; t < layout_.num_terms(); ++t) {
-      const Candidate& c = Candidates(t)[s.pick[t - 1]];
-      const int o = layout_.term_offset(t);
-      const TermKind kind = layout_.term_kind(t);
-      v[o + 1] = c.e0;
-      if (kind == TermKind::kCriticalPoint) {
-        const double a = s.solution[at], b = s.solution[at + 1];
-        v[o] = std::hypot(a, b);
-        v[o + 2] = c.g;
-        v[o + 3] = std::atan2(b, a);
-      } else if (kind == TermKind::kRiouxGap) {
-        v[o] = s.solution[at];
-        v[o + 2] = c.e0 + c.gap;
-        v[o + 3] = c.g;
-      } else {
-        v[o] = s.solution[at];
-        v[o + 2] = c.g;
-      }
-      at += c.columns;
-    }
-    for (int k = 0; k < np; ++k) {
-      const PhysicalParameter& p = layout_.parameters()[k];
-      switch (p.map) {
-        case ParameterMap::kPositive:
-          r[k] = SoftPositiveInverse(std::max(v[k], 1e-3));
-          break;
-        case ParameterMap::kOnePlusPositive:
-          r[k] = SoftPositiveInverse(std::max(v[k] - 1.0, 1e-3));
-          break;
-        case ParameterMap::kAbove:
-          r[k] = SoftPositiveInverse(std::max(v[k] - v[p.reference], 1e-3));
-          break;
-        case ParameterMap::kFree:
-          r[k] = v[k];
-          break;
-      }
-    }
-    return r;
-  }
-
-  const PhysicalLayout& layout_;
-  const size_t m_;
-  Eigen::VectorXd y_;
-  std::vector<double> w_, omega_, gammas_, centres_;
-  std::vector<Eigen::VectorXd> columns_;
-  std::map<TermKind, std::vector<Candidate>> candidates_;
-  std::vector<std::pair<double, double>> windows_;
-  Eigen::MatrixXd gram_;
-  Eigen::VectorXd rhs_;
-  double yy_ = 0;
-};
-
-// Fits one sample alone from the grid search's starts (and extra_start, if given);
-// returns the distinct solutions, best first. Throws Error naming the sample if none.
-std::vector<SolveResult> FitSingle(const PhysicalLayout& layout, const SampleData& s,
-                                   const FitData& data,
-                                   const std::vector<std::pair<double, double>>& windows = {},
-                                   const std::vector<double>* extra_start = nullptr) {
-  const Bounds bounds = MakeBounds(layout, data.omega_max);
-  std::vector<SolveResult> results;
-  GridSearch grid(layout, s, data);
-  std::vector<std::vector<double>> starts = grid.Starts(kEndStarts, windows);
-  if (extra_start) starts.push_back(*extra_start);
-  for (const auto& start : starts) {
-    FitProblem problem(layout, {&s}, Basis{0, 1}, bounds, start);
-    SolveResult r = problem.Solve(100, 1e-9);
-    if (std::isfinite(r.cost)) results.push_back(std::move(r));
-  }
-  std::stable_sort(results.begin(), results.end(),
-                   [](const SolveResult& a, const SolveResult& b) { return a.cost < b.cost; });
-  // Keep distinct solutions only (several starts reach the same minimum).
-  std::vector<SolveResult> distinct;
-  for (auto& r : results) {
-    bool seen = false;
-    for (const auto& d : distinct) seen |= std::abs(d.cost - r.cost) <= 1e-6 * d.cost + 1e-15;
-    if (!seen) distinct.push_back(std::move(r));
-  }
-  if (distinct.empty()) throw Error(s.file + ": the physical fit of this end sample failed");
-  return distinct;
-}
-
-}  // namespace
-
-struct EndSampleFits {
-  std::mutex mutex;
-  std::map<std::string, std::vector<SolveResult>> fits;
-};
-
-std::shared_ptr<EndSampleFits> MakeEndSampleFits() { return std::make_shared<EndSampleFits>(); }
-
-namespace {
-
-// FitSingle of an end sample, through `remembered` when there is one: the remembered
-// result is the one a new fit would give. Keyed by everything FitSingle reads of its inputs.
-std::vector<SolveResult> FitEndSample(const PhysicalLayout& layout, const SampleData& s,
-                                      const FitData& data, EndSampleFits* remembered) {
-  if (remembered == nullptr) return FitSingle(layout, s, data);
-  std::string key = InterbandTermsText(layout.interband());
-  const auto add = [&key](const void* bytes, size_t size) {
-    key.append(static_cast<const char*>(bytes), size);
-  };
-  const int degree = layout.degree();
-  add(&degree, sizeof degree);
-  add(&data.omega_min, sizeof data.omega_min);
-  add(&data.omega_max, sizeof data.omega_max);
-  add(s.omega_ev.data(), s.omega_ev.size() * sizeof(double));
-  add(s.eps.data(), s.eps.size() * sizeof(std::complex<double>));
-  {
-    const std::lock_guard<std::mutex> lock(remembered->mutex);
-    const auto it = remembered->fits.find(key);
-    if (it != remembered->fits.end()) return it->second;
-  }
-  std::vector<SolveResult> fits = FitSingle(layout, s, data);
-  const std::lock_guard<std::mutex> lock(remembered->mutex);
-  remembered->fits.emplace(std::move(key), fits);
-  return fits;
-}
 
 // Bayesian information criterion of a fit with n residuals and p parameters.
 double Bic(double cost, size_t n, int p) {
@@ -631,10 +58,6 @@ SampleFit SampleMisfit(const PhysicalModel& model, const SampleData& s) {
   return f;
 }
 
-}  // namespace
-
-namespace {
-
 PhysicalFitResult FitPhysicalAtDegree(const Dataset& dataset, const PhysicalFitOptions& options);
 
 // n and k above this (or above 1.5 times the largest of the data, for data that go
@@ -642,8 +65,9 @@ PhysicalFitResult FitPhysicalAtDegree(const Dataset& dataset, const PhysicalFitO
 constexpr double kMaxPhysicalIndex = 50;
 
 // Where the fitted model leaves physics inside its ranges, checked at 101 compositions
-// and 201 wavelengths: eps2 < 0 (not passive), or n or k beyond the limit above. Empty
-// when it stays physical.
+// and 201 wavelengths: eps2 < 0 (not passive), or n or k beyond the limit above; then a
+// pole narrower than a model file may hold (PhysicalModel::NarrowestPole). Empty when it
+// stays physical.
 std::string Unphysical(const PhysicalModel& model, const Dataset& dataset) {
   std::vector<double> grid;
   for (int j = 0; j <= 200; ++j) {
@@ -663,20 +87,27 @@ std::string Unphysical(const PhysicalModel& model, const Dataset& dataset) {
     const std::vector<std::complex<double>> eps = model.Permittivity(x, grid);
     for (size_t j = 0; j < grid.size(); ++j) {
       const std::complex<double> nk = std::sqrt(eps[j]);
-      std::ostringstream where;
-      where << " at x = " << FormatNumber(x) << ", " << FormatNumber(grid[j]) << " nm";
+      const auto where = [&] {
+        return " at x = " + FormatNumber(x) + ", " + FormatNumber(grid[j]) + " nm";
+      };
       if (!std::isfinite(eps[j].real()) || !std::isfinite(eps[j].imag())) {
-        return "gives a non-finite eps" + where.str();
+        return "gives a non-finite eps" + where();
       }
       if (eps[j].imag() < -1e-9 * std::abs(eps[j])) {
-        return "is not passive (eps2 = " + FormatNumber(eps[j].imag()) + ")" + where.str();
+        return "is not passive (eps2 = " + FormatNumber(eps[j].imag()) + ")" + where();
       }
       if (nk.real() > limit || nk.imag() > limit) {
         return "has a resonance (n = " + FormatNumber(nk.real()) +
                ", k = " + FormatNumber(nk.imag()) + ", limit " + FormatNumber(limit) + ")" +
-               where.str();
+               where();
       }
     }
+  }
+  double width = 0, width_x = 0;
+  if (!model.NarrowestPole(&width, &width_x).empty() && width < kPhysicalMinWidthEv) {
+    return "has a pole narrower than " + FormatNumber(kPhysicalMinWidthEv) +
+           " eV (G = " + FormatNumber(width) + " eV at x = " + FormatNumber(width_x) +
+           ", its centre among the fitted wavelengths)";
   }
   return "";
 }
@@ -686,9 +117,30 @@ std::string Unphysical(const PhysicalModel& model, const Dataset& dataset) {
 // The fit at options.degree; when it leaves physics inside its range (Unphysical) or does
 // not converge, again one degree lower (a lower degree bends the parameters less between
 // the samples), down to 1; at degree 1 a fit that is still unphysical is an error.
-PhysicalFitResult FitPhysical(const Dataset& dataset, const PhysicalFitOptions& options) {
+PhysicalFitResult FitPhysical(const Dataset& all, const PhysicalFitOptions& options) {
   PhysicalFitOptions o = options;
   std::vector<std::string> notes;
+  // A composition-spread library: the samples of kPhysicalMaxCompositions compositions
+  // spread by rank (the ends kept) determine the model's few coefficients as well as all
+  // would, at a fraction of the cost.
+  const std::vector<double> xs = DistinctCompositions(all);
+  Dataset subset;
+  if (xs.size() > static_cast<size_t>(kPhysicalMaxCompositions)) {
+    std::vector<double> keep;
+    for (int i = 0; i < kPhysicalMaxCompositions; ++i) {
+      keep.push_back(xs[static_cast<size_t>(i) * (xs.size() - 1) / (kPhysicalMaxCompositions - 1)]);
+    }
+    std::vector<double> exclude;
+    std::set_difference(xs.begin(), xs.end(), keep.begin(), keep.end(),
+                        std::back_inserter(exclude));
+    subset = WithoutSamples(all, exclude);
+    notes.push_back("fitted to the samples at " + std::to_string(kPhysicalMaxCompositions) +
+                    " of the " + std::to_string(xs.size()) +
+                    " compositions, spread evenly by rank (the ends among them): more would "
+                    "not move its coefficients, and would cost in proportion");
+    Report(options.progress, "physical: " + notes.back());
+  }
+  const Dataset& dataset = subset.samples.empty() ? all : subset;
   for (;;) {
     PhysicalFitResult result = FitPhysicalAtDegree(dataset, o);
     const std::string problem = o.check_physics ? Unphysical(*result.model, dataset) : "";
@@ -780,61 +232,6 @@ TermChoice ChooseTerms(const FitData& data, const PhysicalFitOptions& options,
     }
   }
   return choice;
-}
-
-// Adds quadratics through the ends' and a middle sample's own fits to the joint starts:
-// they carry the parameters' curvature that the straight line lacks.
-void AddQuadraticStarts(const PhysicalLayout& layout, const Basis& basis, const FitData& data,
-                        const std::vector<double>& r_lo, const std::vector<double>& r_hi,
-                        std::vector<std::vector<double>>* starts) {
-  const int n = static_cast<int>(data.samples.size());
-  const int np = layout.num_parameters();
-  const int nb = layout.basis_size();
-  const SampleData& lo_end = data.samples.front();
-  const SampleData& hi_end = data.samples.back();
-  int mid = 1;
-  for (int i = 1; i < n - 1; ++i) {
-    if (std::abs(basis.U(data.samples[i].x)) < std::abs(basis.U(data.samples[mid].x))) mid = i;
-  }
-  const double um = basis.U(data.samples[mid].x);
-  if (!(std::abs(um) < 0.8)) return;
-  const PhysicalLayout single(layout.interband(), 0);
-  // The middle sample's terms keep their roles: each centre near the span of the
-  // ends' centres, and the straight line as one more start.
-  std::vector<double> v_lo(np), v_hi(np);
-  PhysicalValuesFromRaw(single, r_lo.data(), v_lo.data());
-  PhysicalValuesFromRaw(single, r_hi.data(), v_hi.data());
-  std::vector<std::pair<double, double>> windows;
-  for (int t = 1; t < layout.num_terms(); ++t) {
-    const int k = layout.term_offset(t) + 1;
-    windows.emplace_back(std::min(v_lo[k], v_hi[k]) - 0.3, std::max(v_lo[k], v_hi[k]) + 0.3);
-  }
-  const double t_mid = (data.samples[mid].x - lo_end.x) / (hi_end.x - lo_end.x);
-  std::vector<double> line_mid(np);
-  for (int k = 0; k < np; ++k) line_mid[k] = r_lo[k] + (r_hi[k] - r_lo[k]) * t_mid;
-  std::vector<SolveResult> fits;
-  try {
-    fits = FitSingle(single, data.samples[mid], data, windows, &line_mid);
-  } catch (const Error&) {
-    // No start converged: the straight line alone.
-  }
-  Eigen::Matrix3d a;
-  for (int row = 0; row < 3; ++row) {
-    const double u = row == 0 ? -1.0 : row == 1 ? um : 1.0;
-    double p[3];
-    LegendreBasis(u, 2, p);
-    for (int d = 0; d < 3; ++d) a(row, d) = p[d];
-  }
-  const Eigen::Matrix3d inverse = a.inverse();
-  for (size_t f = 0; f < fits.size() && f < 3; ++f) {
-    if (!(fits[f].cost <= 100.0 * fits.front().cost)) break;
-    std::vector<double> start(layout.num_coefficients(), 0.0);
-    for (int k = 0; k < np; ++k) {
-      const Eigen::Vector3d c = inverse * Eigen::Vector3d(r_lo[k], fits[f].coeffs[k], r_hi[k]);
-      for (int d = 0; d < 3; ++d) start[k * nb + d] = c[d];
-    }
-    starts->push_back(start);
-  }
 }
 
 // The joint fit's starts: the warm start, or the straight line between the ends' best fits

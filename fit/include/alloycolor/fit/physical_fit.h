@@ -83,6 +83,11 @@ struct PhysicalFitResult {
   std::string terms;  // the interband terms used ("none" for Drude only)
 };
 
+// More compositions than kPhysicalMaxCompositions (a composition-spread library): the fit
+// takes the samples of that many, spread evenly by rank with the ends, and says so in a
+// warning (and a progress line).
+inline constexpr int kPhysicalMaxCompositions = 100;
+
 // Throws Error when the data set has fewer than two compositions, when the samples share
 // no wavelength range or do not cover the requested one (naming the sample), or for a
 // bad option (naming it).

@@ -34,32 +34,28 @@ using testing::WriteSyntheticDataset;
 using testing::WriteText;
 
 TEST(SmoothCosts, DataResidualJacobianMatchesFiniteDifferences) {
-  const std::vector<double> knots = {0.0, 0.3, 0.55, 1.0};
-  std::unique_ptr<ceres::CostFunction> cost(
-      fit::SmoothDataResidual::Create(knots, 0.42, std::complex<double>(-12.0, 1.5),
-                                      1 / std::abs(std::complex<double>(-12.0, 1.5))));
-  double e1[4] = {-30.0, -18.0, -11.0, -6.0}, e2[4] = {0.4, 1.9, 1.2, 3.0};
-  const double* blocks[2] = {e1, e2};
-  double residual[2], j1[8], j2[8];
-  double* jacobians[2] = {j1, j2};
-  ASSERT_TRUE(cost->Evaluate(blocks, residual, jacobians));
-  for (int b = 0; b < 2; ++b) {
-    for (int p = 0; p < 4; ++p) {
-      const double h = 1e-6;
-      double plus[2][4], minus[2][4], rp[2], rm[2];
-      std::copy(e1, e1 + 4, plus[0]);
-      std::copy(e2, e2 + 4, plus[1]);
-      std::copy(e1, e1 + 4, minus[0]);
-      std::copy(e2, e2 + 4, minus[1]);
-      plus[b][p] += h;
-      minus[b][p] -= h;
-      const double* bp[2] = {plus[0], plus[1]};
-      const double* bm[2] = {minus[0], minus[1]};
-      cost->Evaluate(bp, rp, nullptr);
-      cost->Evaluate(bm, rm, nullptr);
-      const double* jac = b == 0 ? j1 : j2;
-      for (int r = 0; r < 2; ++r) {
-        EXPECT_NEAR(jac[r * 4 + p], (rp[r] - rm[r]) / (2 * h), 1e-7) << b << " " << r << " " << p;
+  const std::vector<double> knots = {0.0, 0.3, 0.55, 0.8, 1.0};
+  const double weight = 1 / std::abs(std::complex<double>(-12.0, 1.5));
+  for (const auto& [part, target] : {std::pair<int, double>{0, -12.0}, {1, 1.5}}) {
+    for (double x : {0.12, 0.42, 0.9, 1.1}) {
+      const fit::SmoothDataResidual cost(knots, x, target, weight);
+      double values[2][5] = {{-30.0, -18.0, -11.0, -8.0, -6.0}, {0.4, 1.9, 1.2, 2.2, 3.0}};
+      const double* blocks[1] = {values[part]};
+      double residual, jac[5];
+      double* jacobians[1] = {jac};
+      ASSERT_TRUE(cost.Evaluate(blocks, &residual, jacobians));
+      for (int p = 0; p < 5; ++p) {
+        const double h = 1e-6;
+        double plus[5], minus[5], rp, rm;
+        std::copy(values[part], values[part] + 5, plus);
+        std::copy(values[part], values[part] + 5, minus);
+        plus[p] += h;
+        minus[p] -= h;
+        const double* bp[1] = {plus};
+        const double* bm[1] = {minus};
+        cost.Evaluate(bp, &rp, nullptr);
+        cost.Evaluate(bm, &rm, nullptr);
+        EXPECT_NEAR(jac[p], (rp - rm) / (2 * h), 1e-7) << part << " " << x << " " << p;
       }
     }
   }
@@ -69,9 +65,11 @@ TEST(SmoothCosts, RoughnessIsTheWeightedSecondDividedDifference) {
   const std::vector<double> u = {0.0, 0.25, 1.0};
   std::unique_ptr<ceres::CostFunction> cost(fit::SmoothRoughnessResidual::Create(u, 2.0));
   double e1[3] = {1.0, 2.0, 4.0}, e2[3] = {5.0, 4.0, 4.0};
-  const double* blocks[2] = {e1, e2};
   double residual[2];
-  ASSERT_TRUE(cost->Evaluate(blocks, residual, nullptr));
+  const double* block1[1] = {e1};
+  ASSERT_TRUE(cost->Evaluate(block1, &residual[0], nullptr));
+  const double* block2[1] = {e2};
+  ASSERT_TRUE(cost->Evaluate(block2, &residual[1], nullptr));
   // By hand: slopes 4 and 8/3 (eps1), -4 and 0 (eps2); times 2 * 2 / 1 * sqrt(1/2).
   const double scale = 2.0 * 2.0 / 1.0 * std::sqrt(0.5);
   EXPECT_NEAR(residual[0], scale * (8.0 / 3.0 - 4.0), 1e-12);

@@ -12,15 +12,25 @@ double Kernel(double a, double b, double length) {
   return matern + kMeanPrior * (1 + a * b + a * a * b * b);
 }
 
-Eigen::MatrixXd KernelMatrix(const std::vector<double>& u, const GpHyper& hyper) {
+// The kernel without its noise: symmetric, each entry computed once.
+Eigen::MatrixXd NoiselessKernel(const std::vector<double>& u, double length) {
   const Eigen::Index n = static_cast<Eigen::Index>(u.size());
   Eigen::MatrixXd k(n, n);
   for (Eigen::Index i = 0; i < n; ++i) {
-    for (Eigen::Index j = 0; j < n; ++j) k(i, j) = Kernel(u[i], u[j], hyper.length);
-    // A jitter far below any data's precision keeps the interpolating kernel invertible.
-    k(i, i) += hyper.noise + 1e-10;
+    for (Eigen::Index j = 0; j <= i; ++j) k(i, j) = k(j, i) = Kernel(u[i], u[j], length);
   }
   return k;
+}
+
+// With the noise on the diagonal, and a jitter far below any data's precision that keeps
+// the interpolating kernel invertible.
+Eigen::MatrixXd WithNoise(Eigen::MatrixXd k, double noise) {
+  for (Eigen::Index i = 0; i < k.rows(); ++i) k(i, i) += noise + 1e-10;
+  return k;
+}
+
+Eigen::MatrixXd KernelMatrix(const std::vector<double>& u, const GpHyper& hyper) {
+  return WithNoise(NoiselessKernel(u, hyper.length), hyper.noise);
 }
 
 // K^-1, or an empty matrix where K cannot be factorised.
@@ -35,6 +45,15 @@ Eigen::MatrixXd Inverse(const Eigen::MatrixXd& k) {
 bool Interior(const std::vector<double>& u, size_t i) {
   const auto [lo, hi] = std::minmax_element(u.begin(), u.end());
   return u[i] != *lo && u[i] != *hi;
+}
+
+// Interior(u, i) for every i.
+std::vector<char> InteriorFlags(const std::vector<double>& u) {
+  std::vector<char> interior(u.size(), 0);
+  if (u.empty()) return interior;
+  const auto [lo, hi] = std::minmax_element(u.begin(), u.end());
+  for (size_t i = 0; i < u.size(); ++i) interior[i] = u[i] != *lo && u[i] != *hi;
+  return interior;
 }
 
 }  // namespace
@@ -66,16 +85,24 @@ const std::vector<GpHyper>& GpRegression::Candidates() {
 GpRegression GpRegression::Chosen(const std::vector<double>& u, const Eigen::MatrixXd& y,
                                   double* criterion) {
   const Eigen::MatrixXd gram = y * y.transpose();
+  const std::vector<char> interior = InteriorFlags(u);
   double best = HUGE_VAL;
   GpHyper chosen;
+  double length = -1;
+  Eigen::MatrixXd noiseless;
   for (const GpHyper& h : Candidates()) {
-    const Eigen::MatrixXd inverse = Inverse(KernelMatrix(u, h));
+    // The candidates run through the noises at each length: the kernel once per length.
+    if (h.length != length) {
+      length = h.length;
+      noiseless = NoiselessKernel(u, length);
+    }
+    const Eigen::MatrixXd inverse = Inverse(WithNoise(noiseless, h.noise));
     if (inverse.size() == 0) continue;
     const Eigen::MatrixXd m = inverse * gram * inverse;
     double c = 0;
     for (size_t i = 0; i < u.size(); ++i) {
       const Eigen::Index k = static_cast<Eigen::Index>(i);
-      if (Interior(u, i)) c += m(k, k) / (inverse(k, k) * inverse(k, k));
+      if (interior[i]) c += m(k, k) / (inverse(k, k) * inverse(k, k));
     }
     if (std::isfinite(c) && c < best) {
       best = c;

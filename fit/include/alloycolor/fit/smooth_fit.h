@@ -39,6 +39,12 @@
 // left-out reflectance error is more than 10 % below the best smoothing's: with dense samples of a
 // smooth alloy series it uses them all (the PCHIP form sees only each interval's neighbours); with
 // few or scattered samples the PCHIP form stays. A given smoothing keeps the PCHIP form.
+// Above kSmoothMaxGpCompositions compositions (a composition-spread library) the Gaussian
+// process is not tried: its cost grows as the cube of their number, and the PCHIP form's
+// knots already smooth across so many samples.
+//
+// Dense series (more compositions than knots): each node's two parts are independent
+// least-squares problems, each fitted on its own (Ceres, dense normal Cholesky).
 #ifndef ALLOYCOLOR_FIT_SMOOTH_FIT_H_
 #define ALLOYCOLOR_FIT_SMOOTH_FIT_H_
 
@@ -53,6 +59,8 @@
 #include "alloycolor/model/smooth_model.h"
 
 namespace alloycolor::fit {
+
+inline constexpr int kSmoothMaxGpCompositions = 100;
 
 struct SmoothFitOptions {
   std::vector<double> grid_nm;  // empty: DefaultGrid(dataset)

@@ -18,6 +18,9 @@
 namespace alloycolor {
 namespace {
 
+// Compositions this close are one (SamplesAtComposition's tolerance, core/src/dataset.cc).
+constexpr double kSameCompositionAs = 1e-9;
+
 std::complex<double> EpsOf(const NkSpectrum& nk, double lambda_nm) {
   const std::complex<double> i = NkAt(nk, lambda_nm);
   return i * i;
@@ -247,10 +250,23 @@ std::unique_ptr<BoundModel> SampleModel::Bind(const std::vector<double>& lambda_
 }
 
 SampleModel::SampleModel(Kind kind, const Dataset& dataset) : kind_(kind) {
-  // One node per composition: the replicates' mean there.
+  // One node per composition: the replicates' mean there (SamplesAtComposition's, found
+  // among the samples in order of composition rather than by a pass over all of them).
   try {
+    std::vector<const Sample*> sorted;
+    for (const Sample& s : dataset.samples) sorted.push_back(&s);
+    std::stable_sort(sorted.begin(), sorted.end(),
+                     [](const Sample* a, const Sample* b) { return a->x_atomic < b->x_atomic; });
+    size_t first = 0;
     for (double x : DistinctCompositions(dataset)) {
-      nodes_.push_back({x, MeanSpectrum(SamplesAtComposition(dataset, x))});
+      while (first < sorted.size() && sorted[first]->x_atomic < x - kSameCompositionAs) ++first;
+      std::vector<const Sample*> at;
+      for (size_t i = first; i < sorted.size() && sorted[i]->x_atomic <= x + kSameCompositionAs;
+           ++i) {
+        at.push_back(sorted[i]);
+      }
+      std::sort(at.begin(), at.end());  // in the data set's order, as SamplesAtComposition
+      nodes_.push_back({x, MeanSpectrum(at)});
     }
   } catch (const Error& e) {
     throw Error(dataset.manifest_path + ": " + e.what());
@@ -328,6 +344,8 @@ void SampleModel::Validate() {
   if (!(lambda_min_nm() < lambda_max_nm())) {
     throw Error("the samples share no wavelength range");
   }
+  node_x_.clear();
+  for (const Node& node : nodes_) node_x_.push_back(node.x);
 }
 
 void SampleModel::Diagnose() {
@@ -401,19 +419,28 @@ std::vector<std::complex<double>> SampleModel::Permittivity(
 }
 
 std::complex<double> SampleModel::EpsLinearAt(double x, double lambda_nm) const {
-  std::vector<double> xs;
-  for (const Node& node : nodes_) xs.push_back(node.x);
-  const Bracket b = FindBracket(xs, x);
+  const Bracket b = FindBracket(node_x_, x);
   if (b.t == 0.0) return EpsOf(nodes_[b.lo].nk, lambda_nm);
   if (b.t == 1.0) return EpsOf(nodes_[b.hi].nk, lambda_nm);
   return Lerp(EpsOf(nodes_[b.lo].nk, lambda_nm), EpsOf(nodes_[b.hi].nk, lambda_nm), b.t);
 }
 
 std::complex<double> SampleModel::EpsCubicAt(double x, double lambda_nm) const {
+  // PCHIP's slopes at a node depend on its neighbours alone (at an end, on the two next to
+  // it): the nodes from one before x's interval to one after it give the same curve there.
+  // The natural spline's depend on every node.
+  size_t first = 0, last = nodes_.size();
+  if (kind_ == Kind::kEpsPchip) {
+    const Bracket b = FindBracket(node_x_, x);
+    first = b.lo > 0 ? b.lo - 1 : 0;
+    last = std::min(nodes_.size(), b.hi + 2);
+    if (first == 0) last = std::min(nodes_.size(), std::max<size_t>(last, 3));
+    if (last == nodes_.size()) first = std::min(first, nodes_.size() >= 3 ? nodes_.size() - 3 : 0);
+  }
   std::vector<double> xs, e1, e2;
-  for (const Node& node : nodes_) {
-    const std::complex<double> e = EpsOf(node.nk, lambda_nm);
-    xs.push_back(node.x);
+  for (size_t i = first; i < last; ++i) {
+    const std::complex<double> e = EpsOf(nodes_[i].nk, lambda_nm);
+    xs.push_back(nodes_[i].x);
     e1.push_back(e.real());
     e2.push_back(e.imag());
   }

@@ -75,7 +75,8 @@ class SampleModel : public AlloyModel {
   std::complex<double> EpsCubicAt(double x, double lambda_nm) const;
 
   Kind kind_;
-  std::vector<Node> nodes_;  // sorted by x
+  std::vector<Node> nodes_;     // sorted by x
+  std::vector<double> node_x_;  // their compositions
 };
 
 }  // namespace alloycolor

@@ -44,6 +44,16 @@ std::unique_ptr<AlloyModel> BuildSmooth(const Dataset& dataset, const FitSetting
       parent != nullptr && space.empty() && DistinctCompositions(dataset).size() < 3) {
     space = SmoothSpaceName(parent->space());
   }
+  // A fold of a dense series (more compositions than the curves have knots) keeps the
+  // smoothing and space chosen on all the samples, as cross-validating them again on all
+  // but one or two compositions of so many would, at the cost of a hundred fits each.
+  if (const SmoothModel* parent = SmoothModel::From(settings.parent);
+      parent != nullptr && settings.fold && options.smoothing < 0 &&
+      parent->fit_summary().details.value("form", "") != "gaussian process" &&
+      DistinctCompositions(dataset).size() > parent->knots_x().size()) {
+    options.smoothing = parent->smoothing();
+    if (space.empty()) space = SmoothSpaceName(parent->space());
+  }
   if (space == "eps") options.space = SmoothSpace::kEps;
   if (space == "log_eps") options.space = SmoothSpace::kLogEps;
   options.progress = settings.progress;

@@ -132,4 +132,82 @@ std::unique_ptr<AlloyModel> BuildWithFolds(const MethodInfo& method, const Datas
   return model;
 }
 
+namespace {
+
+// RememberedBuild's key: the method, its options and every setting the build reads, and
+// the samples (composition, wavelengths, n, k).
+std::string BuildKey(const MethodInfo& method, const Dataset& dataset,
+                     const FitSettings& settings) {
+  std::string key = method.name + '\n' + settings.options.Key();
+  const auto add = [&key](const void* bytes, size_t size) {
+    key.append(static_cast<const char*>(bytes), size);
+  };
+  const int flags[] = {settings.calibrate, settings.max_iterations};
+  add(flags, sizeof flags);
+  add(&settings.colorimeter, sizeof settings.colorimeter);
+  for (const Sample& s : dataset.samples) {
+    add(&s.x_atomic, sizeof s.x_atomic);
+    for (const auto* v : {&s.nk.lambda_nm, &s.nk.n, &s.nk.k}) {
+      const size_t size = v->size();
+      add(&size, sizeof size);
+      add(v->data(), size * sizeof(double));
+    }
+  }
+  return key;
+}
+
+Scored BuildAndScore(const MethodInfo& method, const Dataset& dataset,
+                     const FitSettings& settings) {
+  Scored r;
+  r.score.method = method.name;
+  std::vector<Fold> folds;
+  try {
+    r.model = Build(method, dataset, settings);
+    RecordInSampleError(dataset, settings, r.model.get());
+    AddFolds(method, dataset, settings, r.model.get(), &folds);
+  } catch (const Error& e) {
+    r.model.reset();
+    r.score.error = e.what();
+    return r;
+  }
+  ScoreFolds(method.name, folds, *settings.colorimeter, &r);
+  return r;
+}
+
+}  // namespace
+
+Scored RememberedBuild(const MethodInfo& method, const Dataset& dataset,
+                       const FitSettings& settings) {
+  if (!settings.memo || settings.start != nullptr || settings.fold) {
+    return BuildAndScore(method, dataset, settings);
+  }
+  const std::string key = BuildKey(method, dataset, settings);
+  FitMemo& memo = *settings.memo;
+  {
+    const std::lock_guard<std::mutex> lock(memo.mutex);
+    const auto it = memo.builds.find(key);
+    if (it != memo.builds.end()) {
+      const FitMemo::Remembered& m = it->second;
+      Scored r;
+      if (!m.model.is_null())
+        r.model = method.read(m.model, "the remembered " + method.name + " fit");
+      r.score = m.score;
+      r.values = m.values;
+      r.held_x = m.held_x;
+      r.metric = m.metric;
+      return r;
+    }
+  }
+  Scored r = BuildAndScore(method, dataset, settings);
+  // A model that keeps its samples (no fitted coefficients: paper, eps-*) is built again
+  // rather than copied: its copy through the model file, every sample's spectrum, costs
+  // what building it does.
+  if (r.model && r.model->FittedCoefficients().empty()) return r;
+  FitMemo::Remembered m{r.model ? r.model->ToJson() : nlohmann::json(), r.score, r.values, r.held_x,
+                        r.metric};
+  const std::lock_guard<std::mutex> lock(memo.mutex);
+  memo.builds.emplace(key, std::move(m));
+  return r;
+}
+
 }  // namespace alloycolor::fit

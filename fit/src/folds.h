@@ -38,6 +38,7 @@ struct FitMemo {
   };
   std::mutex mutex;
   std::map<std::string, Remembered> degree_choices;
+  std::map<std::string, Remembered> builds;  // RememberedBuild's
   std::shared_ptr<EndSampleFits> end_fits = MakeEndSampleFits();
 };
 
@@ -116,6 +117,16 @@ inline constexpr double kInSampleMissReflectance = 0.01;
 // `misses_end`: per candidate, whether it contradicts an end sample (BuildAuto).
 double ChoiceCalibrationFactor(const std::vector<Scored>& candidates,
                                const std::vector<bool>& misses_end, size_t chosen);
+
+// `method` built on the data set with its folds (with settings.calibrate, its prediction
+// error from them) and the folds' held-out samples scored (ScoreFolds): what `auto` scores a
+// candidate by and what `validate` builds a method as, done once per job through
+// settings.memo (the remembered model a copy through the model file), keyed as the degree
+// choice is. A method that cannot be built gives no model and score.error says why; one
+// whose folds cannot be scored keeps its model, score.error saying why. settings.colorimeter
+// is needed; a refit (settings.start) or a fold is not remembered.
+Scored RememberedBuild(const MethodInfo& method, const Dataset& dataset,
+                       const FitSettings& settings);
 
 // `auto` and the physical degree choice (selection.cc).
 bool ChoosesDegree(const MethodInfo& method, const FitSettings& settings);

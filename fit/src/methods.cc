@@ -50,6 +50,13 @@ std::unique_ptr<AlloyModel> BuildModel(const std::string& method, const Dataset&
     if (!r.model) throw Error(r.score.error);
     return std::move(r.model);
   }
+  if (settings.calibrate && settings.colorimeter != nullptr) {
+    // Through the job's memo: `validate` builds each method on a split as `auto` scores it
+    // there as a candidate.
+    Scored r = RememberedBuild(info, dataset, settings);
+    if (!r.model) throw Error(r.score.error);
+    return std::move(r.model);
+  }
   return BuildWithFolds(info, dataset, settings, nullptr);
 }
 

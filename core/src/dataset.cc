@@ -1,5 +1,7 @@
 #include "alloycolor/core/dataset.h"
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -281,15 +283,53 @@ Sample ReadSampleEntry(const std::string& manifest, const fs::path& manifest_pat
   return sample;
 }
 
-// Refuses two samples that read the same file and columns, by any path.
+// What SameFile compares of a path, found once for every pair it is in: its device and
+// inode where the file exists (as fs::equivalent compares them), else its weakly canonical
+// form (SameFile's fallback when neither exists).
+struct FileIdentity {
+  bool exists = false;
+  dev_t device = 0;
+  ino_t inode = 0;
+  std::string canonical;  // where it does not exist; empty when that failed too
+};
+
+FileIdentity IdentityOf(const std::string& path) {
+  FileIdentity id;
+  struct stat st;
+  if (::stat(path.c_str(), &st) == 0) {
+    id.exists = true;
+    id.device = st.st_dev;
+    id.inode = st.st_ino;
+    return id;
+  }
+  std::error_code error;
+  const fs::path canonical = fs::weakly_canonical(path, error);
+  if (!error) id.canonical = canonical.string();
+  return id;
+}
+
+bool SameIdentity(const FileIdentity& a, const FileIdentity& b) {
+  if (a.exists || b.exists)
+    return a.exists && b.exists && a.device == b.device && a.inode == b.inode;
+  return !a.canonical.empty() && a.canonical == b.canonical;
+}
+
+// Refuses two samples that read the same file and columns, by any path (each path's
+// identity found once: with a thousand samples, a million comparisons and no million stats).
 void CheckDistinctFiles(const std::string& manifest, const std::vector<Sample>& samples) {
+  std::vector<FileIdentity> files, k_files;
+  for (const Sample& s : samples) {
+    files.push_back(IdentityOf(s.path));
+    k_files.push_back(s.k_path.empty() ? FileIdentity{} : IdentityOf(s.k_path));
+  }
   for (std::size_t i = 0; i < samples.size(); ++i) {
     for (std::size_t j = 0; j < i; ++j) {
       const Sample& s = samples[j];
       const Sample& t = samples[i];
-      if (s.columns.n == t.columns.n && s.columns.k == t.columns.k && SameFile(s.path, t.path) &&
+      if (s.columns.n == t.columns.n && s.columns.k == t.columns.k &&
+          SameIdentity(files[j], files[i]) &&
           (s.k_path.empty() ? t.k_path.empty()
-                            : !t.k_path.empty() && SameFile(s.k_path, t.k_path))) {
+                            : !t.k_path.empty() && SameIdentity(k_files[j], k_files[i]))) {
         Fail(manifest + ": samples[" + std::to_string(j) + "] and samples[" + std::to_string(i) +
              "] both use " + Quote60(t.file) + " (at x = " + FormatNumber(s.x_given) + " and " +
              FormatNumber(t.x_given) + "); one file is one composition");

@@ -6,7 +6,9 @@
 //  - Naive: the straightforward implementation of the chain, written here as a plain
 //    per-sample loop with std::complex: the model's eps on the grid (for smooth, its
 //    coefficients interpolated in wavelength and exponentiated per sample, as a first
-//    implementation would), N = sqrt(eps), R = |(N - 1) / (N + 1)|^2, weighted sums.
+//    implementation would; for physical, its parameters at the composition and then each
+//    wavelength's terms one at a time, PhysicalPermittivity, with the C library's
+//    functions), N = sqrt(eps), R = |(N - 1) / (N + 1)|^2, weighted sums.
 //  - Library: what `alloycolor color` does per composition: color::IndexOnGrid,
 //    color::MaterialXYZ, color::ColorFromXYZ.
 //  - SweepExact: color::ColorSweep::ExactXYZ (smooth: coefficients on the grid once, no
@@ -30,6 +32,7 @@
 #include "alloycolor/fit/physical_fit.h"
 #include "alloycolor/fit/smooth_fit.h"
 #include "alloycolor/model/interpolation.h"
+#include "alloycolor/model/physical_model.h"
 #include "alloycolor/model/sample_models.h"
 #include "alloycolor/model/smooth_model.h"
 
@@ -121,16 +124,32 @@ std::vector<std::complex<double>> NaiveSmoothEps(const SmoothModel& model, doubl
   return eps;
 }
 
+// The physical model one wavelength at a time: its parameter values at x, then each term.
+std::vector<std::complex<double>> NaivePhysicalEps(const PhysicalModel& model, double x,
+                                                   const std::vector<double>& grid) {
+  std::vector<double> values(model.layout().num_parameters());
+  model.ValuesAt(x, model.coeffs().data(), values.data());
+  std::vector<std::complex<double>> eps;
+  for (double l : grid) {
+    const Complex<double> e =
+        PhysicalPermittivity(model.layout(), values.data(), OmegaEvFromLambdaNm(l));
+    eps.push_back({e.re, e.im});
+  }
+  return eps;
+}
+
 void BM_Naive(benchmark::State& state) {
   const Fixture& f = Shared();
   const AlloyModel& model = f.Model(state.range(0));
   const auto* smooth = dynamic_cast<const SmoothModel*>(&model);
+  const PhysicalModel* physical = PhysicalModel::From(&model);
   const std::vector<double> grid = HeldGrid(f.colorimeter, model);
   int64_t i = 0;
   for (auto _ : state) {
     const double x = SweepX(i++);
-    const std::vector<std::complex<double>> eps =
-        smooth ? NaiveSmoothEps(*smooth, x, grid) : model.Permittivity(x, grid);
+    const std::vector<std::complex<double>> eps = smooth     ? NaiveSmoothEps(*smooth, x, grid)
+                                                  : physical ? NaivePhysicalEps(*physical, x, grid)
+                                                             : model.Permittivity(x, grid);
     benchmark::DoNotOptimize(Finish(f.colorimeter, NaiveXYZFromEps(f.colorimeter, eps)));
   }
   state.SetItemsProcessed(state.iterations());

@@ -132,12 +132,8 @@ std::unique_ptr<AlloyModel> BuildWithFolds(const MethodInfo& method, const Datas
   return model;
 }
 
-namespace {
-
-// RememberedBuild's key: the method, its options and every setting the build reads, and
-// the samples (composition, wavelengths, n, k).
-std::string BuildKey(const MethodInfo& method, const Dataset& dataset,
-                     const FitSettings& settings) {
+std::string FitMemoKey(const MethodInfo& method, const Dataset& dataset,
+                       const FitSettings& settings) {
   std::string key = method.name + '\n' + settings.options.Key();
   const auto add = [&key](const void* bytes, size_t size) {
     key.append(static_cast<const char*>(bytes), size);
@@ -155,6 +151,8 @@ std::string BuildKey(const MethodInfo& method, const Dataset& dataset,
   }
   return key;
 }
+
+namespace {
 
 Scored BuildAndScore(const MethodInfo& method, const Dataset& dataset,
                      const FitSettings& settings) {
@@ -181,7 +179,7 @@ Scored RememberedBuild(const MethodInfo& method, const Dataset& dataset,
   if (!settings.memo || settings.start != nullptr || settings.fold) {
     return BuildAndScore(method, dataset, settings);
   }
-  const std::string key = BuildKey(method, dataset, settings);
+  const std::string key = FitMemoKey(method, dataset, settings);
   FitMemo& memo = *settings.memo;
   {
     const std::lock_guard<std::mutex> lock(memo.mutex);

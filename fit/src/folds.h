@@ -118,13 +118,18 @@ inline constexpr double kInSampleMissReflectance = 0.01;
 double ChoiceCalibrationFactor(const std::vector<Scored>& candidates,
                                const std::vector<bool>& misses_end, size_t chosen);
 
+// The memo's key of a build of `method` on the data set: the method, its options and every
+// setting a build reads, and the samples (composition, wavelengths, n, k).
+std::string FitMemoKey(const MethodInfo& method, const Dataset& dataset,
+                       const FitSettings& settings);
+
 // `method` built on the data set with its folds (with settings.calibrate, its prediction
 // error from them) and the folds' held-out samples scored (ScoreFolds): what `auto` scores a
 // candidate by and what `validate` builds a method as, done once per job through
-// settings.memo (the remembered model a copy through the model file), keyed as the degree
-// choice is. A method that cannot be built gives no model and score.error says why; one
-// whose folds cannot be scored keeps its model, score.error saying why. settings.colorimeter
-// is needed; a refit (settings.start) or a fold is not remembered.
+// settings.memo (the remembered model a copy through the model file; FitMemoKey). A method that
+// cannot be built gives no model and score.error says why; one whose folds cannot be scored keeps
+// its model, score.error saying why. settings.colorimeter is needed; a refit (settings.start) or a
+// fold is not remembered.
 Scored RememberedBuild(const MethodInfo& method, const Dataset& dataset,
                        const FitSettings& settings);
 

@@ -296,21 +296,7 @@ Scored RememberedDegreeChoice(const MethodInfo& method, const Dataset& dataset,
   if (!settings.memo || settings.start != nullptr) {
     return BuildChoosingDegree(method, dataset, settings);
   }
-  std::string key = method.name + '\n' + settings.options.Key();
-  const auto add = [&key](const void* bytes, size_t size) {
-    key.append(static_cast<const char*>(bytes), size);
-  };
-  const int flags[] = {settings.calibrate, settings.max_iterations};
-  add(flags, sizeof flags);
-  add(&settings.colorimeter, sizeof settings.colorimeter);
-  for (const Sample& s : dataset.samples) {
-    add(&s.x_atomic, sizeof s.x_atomic);
-    for (const auto* v : {&s.nk.lambda_nm, &s.nk.n, &s.nk.k}) {
-      const size_t size = v->size();
-      add(&size, sizeof size);
-      add(v->data(), size * sizeof(double));
-    }
-  }
+  const std::string key = FitMemoKey(method, dataset, settings);
   FitMemo& memo = *settings.memo;
   const auto copy = [&method](const FitMemo::Remembered& m) {
     Scored r;

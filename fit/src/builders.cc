@@ -58,6 +58,7 @@ std::unique_ptr<AlloyModel> BuildSmooth(const Dataset& dataset, const FitSetting
   if (space == "log_eps") options.space = SmoothSpace::kLogEps;
   options.progress = settings.progress;
   options.details = settings.details;
+  options.cancel = settings.cancel;
   options.grid_nm = SmoothGrid(given, dataset);
   options.start = SmoothModel::From(settings.start);
   if (settings.start != nullptr && options.start == nullptr) {
@@ -84,6 +85,7 @@ std::unique_ptr<AlloyModel> BuildPhysical(const Dataset& dataset, const FitSetti
   // plain long before.
   if (settings.fold) options.max_iterations = std::max(1, options.max_iterations / 5);
   options.progress = settings.progress;
+  options.cancel = settings.cancel;
   options.start = PhysicalModel::From(settings.start);
   options.lambda_from_nm = given.Number("lambda_from_nm", 0);
   options.lambda_to_nm = given.Number("lambda_to_nm", 0);

@@ -112,6 +112,7 @@ std::unique_ptr<AlloyModel> Build(const MethodInfo& method, const Dataset& datas
   if (method.build == nullptr) {
     throw Error("method '" + method.name + "' cannot be fitted to data");
   }
+  CheckCancel(settings.cancel);  // every fit of the job starts here
   return method.build(dataset, settings);
 }
 

@@ -138,11 +138,13 @@ std::unique_ptr<AlloyModel> FitDataSet(const std::string& method, const Dataset&
 }
 
 std::function<std::unique_ptr<AlloyModel>(const std::string& method, const Dataset&)>
-WholeDataSetFitter(const color::Colorimeter& colorimeter, ThreadBudget* threads) {
-  return [&colorimeter, threads](const std::string& method, const Dataset& dataset) {
+WholeDataSetFitter(const color::Colorimeter& colorimeter, ThreadBudget* threads,
+                   CancelCheck cancel) {
+  return [&colorimeter, threads, cancel](const std::string& method, const Dataset& dataset) {
     FitSettings settings;
     settings.colorimeter = &colorimeter;
     settings.threads = threads;
+    settings.cancel = cancel;
     return FitDataSet(method, dataset, settings, {nullptr, NowUtcIso8601()});
   };
 }

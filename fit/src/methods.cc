@@ -1,6 +1,7 @@
 #include "alloycolor/fit/methods.h"
 
 #include <memory>
+#include <utility>
 
 #include "alloycolor/core/dataset.h"
 #include "alloycolor/core/error.h"
@@ -61,10 +62,11 @@ std::unique_ptr<AlloyModel> BuildModel(const std::string& method, const Dataset&
 }
 
 std::function<std::unique_ptr<AlloyModel>(const std::string& method, const Dataset& training)>
-SharedFitBuilder(const color::Colorimeter& colorimeter, ThreadBudget* threads) {
+SharedFitBuilder(const color::Colorimeter& colorimeter, ThreadBudget* threads, CancelCheck cancel) {
   FitSettings settings;
   settings.colorimeter = &colorimeter;
   settings.threads = threads;
+  settings.cancel = std::move(cancel);
   settings.memo = MakeFitMemo();
   return [settings](const std::string& method, const Dataset& training) {
     return BuildModel(method, training, settings);

@@ -216,7 +216,9 @@ TermChoice ChooseTerms(const FitData& data, const PhysicalFitOptions& options,
     msg << "fitting the end samples (x = " << lo_end.x << ", " << hi_end.x << ") with terms "
         << InterbandTermsText(k);
     Report(options.progress, msg.str());
+    CheckCancel(options.cancel);
     auto lo = FitEndSample(end_layout, lo_end, data, options.end_fits);
+    CheckCancel(options.cancel);
     auto hi = FitEndSample(end_layout, hi_end, data, options.end_fits);
     const int p = end_layout.num_parameters();
     const double bic = Bic(lo.front().cost, 2 * lo_end.eps.size(), p) +
@@ -264,14 +266,15 @@ std::vector<std::vector<double>> JointStarts(const PhysicalLayout& layout, const
 // convergence.
 SolveResult RaceStarts(const PhysicalLayout& layout, const std::vector<const SampleData*>& all,
                        const Basis& basis, const Bounds& bounds,
-                       const std::vector<std::vector<double>>& starts, int max_iterations) {
+                       const std::vector<std::vector<double>>& starts, int max_iterations,
+                       const CancelCheck& cancel) {
   std::vector<std::unique_ptr<FitProblem>> problems;
   SolveResult best;
   best.cost = HUGE_VAL;
   size_t leader = 0;
   for (const auto& start : starts) {
     problems.push_back(std::make_unique<FitProblem>(layout, all, basis, bounds, start));
-    SolveResult r = problems.back()->Solve(kRaceIterations, 1e-12);
+    SolveResult r = problems.back()->Solve(kRaceIterations, 1e-12, cancel);
     if (r.cost < best.cost) {
       best = std::move(r);
       leader = problems.size() - 1;
@@ -279,7 +282,7 @@ SolveResult RaceStarts(const PhysicalLayout& layout, const std::vector<const Sam
   }
   if (std::isfinite(best.cost) && !best.converged) {
     const int done = best.iterations;
-    best = problems[leader]->Solve(std::max(1, max_iterations - done), 1e-12);
+    best = problems[leader]->Solve(std::max(1, max_iterations - done), 1e-12, cancel);
     best.iterations += done;
   }
   return best;
@@ -417,7 +420,8 @@ PhysicalFitResult FitPhysicalAtDegree(const Dataset& dataset, const PhysicalFitO
                                std::to_string(degree) + ", " + std::to_string(n) + " samples x " +
                                std::to_string(data.grid_nm.size()) + " wavelengths");
   const std::vector<std::vector<double>> starts = JointStarts(layout, basis, data, warm, terms);
-  const SolveResult best = RaceStarts(layout, all, basis, bounds, starts, options.max_iterations);
+  const SolveResult best =
+      RaceStarts(layout, all, basis, bounds, starts, options.max_iterations, options.cancel);
   if (!std::isfinite(best.cost)) throw Error(dataset.manifest_path + ": the physical fit failed");
 
   const JointCovariance cov =

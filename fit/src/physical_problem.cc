@@ -12,6 +12,7 @@
 #include "alloycolor/core/io.h"
 #include "alloycolor/core/units.h"
 #include "alloycolor/fit/physical_costs.h"
+#include "cancel_callback.h"
 
 namespace alloycolor::fit::physical {
 
@@ -134,8 +135,9 @@ FitProblem::FitProblem(const PhysicalLayout& layout, const std::vector<const Sam
   }
 }
 
-SolveResult FitProblem::Solve(int max_iterations, double tolerance) {
+SolveResult FitProblem::Solve(int max_iterations, double tolerance, const CancelCheck& cancel) {
   ceres::Solver::Options options;
+  const CancelCallback cancel_callback(cancel, &options);
   // One dense parameter block: Eigen dense normal equations, no threads, the same bytes
   // every run.
   options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
@@ -148,6 +150,7 @@ SolveResult FitProblem::Solve(int max_iterations, double tolerance) {
   options.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;
   ceres::Solve(options, &problem_, &summary);
+  cancel_callback.Rethrow();
   SolveResult r;
   r.coeffs = coeffs_;
   r.cost = summary.termination_type == ceres::FAILURE ? HUGE_VAL : summary.final_cost;

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "alloycolor/core/dataset.h"
+#include "alloycolor/core/progress.h"
 #include "alloycolor/fit/physical_fit.h"
 #include "alloycolor/model/physical_model.h"
 
@@ -63,7 +64,9 @@ class FitProblem {
  public:
   FitProblem(const PhysicalLayout& layout, const std::vector<const SampleData*>& samples,
              const Basis& basis, const Bounds& bounds, std::vector<double> start);
-  SolveResult Solve(int max_iterations, double tolerance);
+  // `cancel` (may be empty) is called between iterations; its exception stops the solve
+  // and propagates.
+  SolveResult Solve(int max_iterations, double tolerance, const CancelCheck& cancel = {});
   // The covariance of the coefficients, unscaled ((J^T J)^-1, or its pseudo-inverse when
   // J is rank-deficient); empty if it fails. *pseudo_inverse says whether J is
   // rank-deficient: lambda_min / lambda_max of J^T J below the Ceres default

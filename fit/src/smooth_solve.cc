@@ -333,6 +333,7 @@ Solution SolveCeres(const GridData& g, const std::vector<char>& in, double smoot
   s.converged = true;
   s.termination = ceres::TerminationTypeToString(ceres::CONVERGENCE);
   for (size_t j = 0; j < nodes; ++j) {
+    CheckCancel(options.cancel);
     double sum_sq = 0;
     int count = 0;
     for (size_t i = 0; i < g.x.size(); ++i) {
@@ -384,6 +385,7 @@ Solution SolveCeres(const GridData& g, const std::vector<char>& in, double smoot
 
 Solution Solve(const GridData& g, const std::vector<char>& in, double smoothing,
                const SmoothFitOptions& options) {
+  CheckCancel(options.cancel);
   const std::vector<double> compositions = Compositions(g, in);
   std::vector<double> knots = Knots(compositions, std::min(options.max_knots, kSmoothMaxKnots));
   if (knots.size() == compositions.size()) {

@@ -61,6 +61,7 @@ ModelClass BindModel(py::module_& m) {
     std::unique_ptr<AlloyModel> model;
     RunInterruptible([&](const CancelCheck& cancel) {
       settings.progress = WithCancel(python_progress, cancel);
+      settings.cancel = cancel;
       model = fit::FitDataSet(method, dataset, settings, record);
     });
     return std::shared_ptr<AlloyModel>(std::move(model));

@@ -45,8 +45,6 @@ void BindValidate(py::module_& m) {
           // As `alloycolor validate`: fits score colour under D65, 2 degrees.
           const color::Colorimeter& d65 = GetColorimeter("D65", 2);
           ThreadBudget threads;  // every core, as the program's default
-          options.build = fit::SharedFitBuilder(d65, &threads);
-          options.fit_whole = fit::WholeDataSetFitter(d65, &threads);  // the report's opening
           options.threads = &threads;
           options.methods = methods;
           options.angles_deg = angles_deg;
@@ -57,6 +55,8 @@ void BindValidate(py::module_& m) {
             const ProgressCallback callback = WithCancel(python_progress, cancel);
             options.details = callback;  // a Python caller gets every split's line too
             options.cancel = cancel;
+            options.build = fit::SharedFitBuilder(d65, &threads, cancel);
+            options.fit_whole = fit::WholeDataSetFitter(d65, &threads, cancel);  // the opening
             const color::Colorimeter& colorimeter = GetColorimeter(illuminant, observer_deg);
             const validate::ValidationReport report =
                 validate::ComputeValidation(dataset, splits, colorimeter, options, callback);

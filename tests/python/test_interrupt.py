@@ -70,7 +70,7 @@ def spread(tmp_path_factory):
     return folder
 
 
-@pytest.mark.parametrize("what", ["validate", "explore", "render", "colour"])
+@pytest.mark.parametrize("what", ["validate", "fit", "explore", "render", "colour"])
 def test_ctrl_c_stops_a_long_call(spread, tmp_path, what):
     out = tmp_path / "out"
     out.mkdir()

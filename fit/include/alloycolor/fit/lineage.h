@@ -39,9 +39,10 @@ std::unique_ptr<AlloyModel> FitDataSet(const std::string& method, const Dataset&
 // FitDataSet with the default options, dated now, as a function of the method and the
 // data set: what a validation report describes the whole data set by
 // (validate::ValidationOptions::fit_whole). `colorimeter` (and `threads`, if given) must
-// outlive it.
+// outlive it; `cancel` is checked in the fit (FitSettings::cancel).
 std::function<std::unique_ptr<AlloyModel>(const std::string& method, const Dataset&)>
-WholeDataSetFitter(const color::Colorimeter& colorimeter, ThreadBudget* threads = nullptr);
+WholeDataSetFitter(const color::Colorimeter& colorimeter, ThreadBudget* threads = nullptr,
+                   CancelCheck cancel = {});
 
 // The entry FitDataSet adds to the history of `model`, fitted to `dataset`, after
 // `previous` (null for a first fit).

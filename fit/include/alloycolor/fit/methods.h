@@ -66,6 +66,10 @@ struct FitSettings {
   std::shared_ptr<FitMemo> memo;      // null: BuildModel makes one for this fit alone
   ProgressCallback progress;          // may be empty: a line per step of the work
   ProgressCallback details;           // may be empty: cross-validation tables and the like
+  // May be empty: called before every fit the job makes (candidates, degrees, folds, the
+  // samples' checks) and between the solver's iterations (core/progress.h); its exception
+  // stops them all. Unlike progress, the folds keep it.
+  CancelCheck cancel;
   // auto (required there): the colorimeter its leave-one-out scores colour with, at normal
   // incidence; data without colour (infrared) are scored by reflectance.
   const color::Colorimeter* colorimeter = nullptr;
@@ -137,10 +141,11 @@ std::unique_ptr<AlloyModel> BuildModel(const std::string& method, const Dataset&
 
 // BuildModel for many fits of one job (the splits and methods of a validation report, as
 // validate::ModelBuilder): colours scored with `colorimeter`, which must outlive it, one
-// FitMemo shared by every fit it makes, and the folds' threads from `threads` (if given,
-// it must outlive the builder).
+// FitMemo shared by every fit it makes, the folds' threads from `threads` (if given, it must
+// outlive the builder), and `cancel` checked in every fit (FitSettings::cancel).
 std::function<std::unique_ptr<AlloyModel>(const std::string& method, const Dataset& training)>
-SharedFitBuilder(const color::Colorimeter& colorimeter, ThreadBudget* threads = nullptr);
+SharedFitBuilder(const color::Colorimeter& colorimeter, ThreadBudget* threads = nullptr,
+                 CancelCheck cancel = {});
 
 }  // namespace alloycolor::fit
 

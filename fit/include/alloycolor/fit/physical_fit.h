@@ -40,6 +40,7 @@
 #include <vector>
 
 #include "alloycolor/core/dataset.h"
+#include "alloycolor/core/progress.h"
 #include "alloycolor/model/physical_model.h"
 
 namespace alloycolor::fit {
@@ -72,6 +73,7 @@ struct PhysicalFitOptions {
   bool check_physics = true;
   EndSampleFits* end_fits = nullptr;  // may be null: the end samples fitted afresh
   std::function<void(const std::string& message)> progress;  // may be empty
+  CancelCheck cancel;  // may be empty: called between the solver's iterations (core/progress.h)
 };
 
 // The candidates "auto" tries on visible data.

@@ -73,6 +73,7 @@ struct SmoothFitOptions {
   const SmoothModel* start = nullptr;  // refit: start from this model's eps at the knots
   ProgressCallback progress;           // may be empty
   ProgressCallback details;            // may be empty: each candidate's cross-validation
+  CancelCheck cancel;  // may be empty: called before each solve and node (core/progress.h)
 };
 
 // The candidates cross-validation tries.

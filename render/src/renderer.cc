@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <sstream>
 #include <utility>
 
 #include "alloycolor/core/error.h"
@@ -262,19 +261,6 @@ class TileTracer {
   std::vector<Hit> hits_;
 };
 
-void CheckOptions(const RenderOptions& o) {
-  if (o.size < 1 || o.size > kMaxTileSize) {
-    throw Error("image size " + std::to_string(o.size) + " lies outside 1-" +
-                std::to_string(kMaxTileSize) + " pixels");
-  }
-  if (!(o.roughness >= 0.0 && o.roughness <= kMaxRoughness)) {
-    std::ostringstream msg;
-    msg << "roughness " << o.roughness << " lies outside 0-" << kMaxRoughness;
-    throw Error(msg.str());
-  }
-  if (o.threads < 0) throw Error("thread count " + std::to_string(o.threads) + " is negative");
-}
-
 }  // namespace
 
 void CheckRenderOptions(const RenderOptions& o, bool direct, OptionSpelling spelling) {
@@ -509,7 +495,7 @@ std::unique_ptr<internal::TilePlan> TraceTile(const RenderOptions& options,
 
 Renderer::Renderer(const color::Colorimeter& colorimeter, const RenderOptions& options)
     : colorimeter_(colorimeter), options_(options), environment_(options.lighting) {
-  CheckOptions(options_);
+  CheckRenderOptions(options_, false);
   if (options_.lighting == Lighting::kStudio && options_.roughness > 0.0) {
     prefiltered_ = std::make_unique<PrefilteredEnvironment>(environment_, options_.roughness,
                                                             ThreadCount(options_.threads));

@@ -124,7 +124,8 @@ class Dataset:
     """An alloy system and its samples: a folder with a ``dataset.json``, the manifest
     itself, or a bundled set's name (``"Au-Ag"``, ``"Cu-Zn"``, ``"Nb-Sn"``)."""
 
-    def __init__(self, path_or_name: Union[str, os.PathLike, None] = None, *, _core_set=None):
+    def __init__(self, path_or_name: Union[str, os.PathLike, None] = None, *, _core_set=None,
+                 _read=None):
         if _core_set is None:
             arg = _path("path_or_name", path_or_name)
             self._given = arg  # as `alloycolor --data` would be given it
@@ -135,6 +136,8 @@ class Dataset:
         else:
             self._given = _core_set.manifest_path
         self._core = _core_set
+        # The set as read from its files (select and without keep it): all of them inputs.
+        self._read = _core_set if _read is None else _read
 
     name = property(lambda self: self._core.name)
     system = property(lambda self: self._core.system, doc='"Au-Ag": elements a and b')
@@ -174,20 +177,21 @@ class Dataset:
     def without(self, x: Iterable) -> "Dataset":
         """The data set without the samples at compositions x (every replicate there): each a
         sample's atomic fraction, the number its manifest gives it, or a string such as "85wt%"."""
-        return Dataset(_core_set=self._core.without([self._match(v) for v in x]))
+        return Dataset(_core_set=self._core.without([self._match(v) for v in x]),
+                       _read=self._read)
 
     def select(self, x: Iterable) -> "Dataset":
         """The data set with only the samples at compositions x (as in :meth:`without`)."""
         keep = [self._match(v) for v in x]
         drop = [v for v in self.x_atomic if all(abs(v - k) > 1e-9 for k in keep)]
-        return Dataset(_core_set=self._core.without(drop))
+        return Dataset(_core_set=self._core.without(drop), _read=self._read)
 
     def fit(self, method: str = "auto", **options) -> "Model":
         """Fits a model; see :func:`alloycolor.fit`."""
         return fit(self, method, **options)
 
     def _note_inputs(self, guard) -> None:
-        guard.note_dataset(self._core)
+        guard.note_dataset(self._read)
 
     def __len__(self):
         return len(self.x_atomic)

@@ -79,6 +79,18 @@ def test_no_input_of_a_data_set_is_written(lab, writer, tmp_path):
     assert snapshot(tmp_path) == before  # nothing written, no temporary left
 
 
+def test_a_selection_keeps_every_file_of_its_data_set(lab, tmp_path):
+    # As `fit --data D --exclude X` notes every file of D before leaving X out.
+    before = snapshot(tmp_path)
+    model = ac.fit(lab.select([0, 0.5, 1]), "paper")
+    for path in ("Au-Ag/Rioux-Au70Ag30.yml", "Au-Ag/aside.yml", "Au-Ag/k.yml"):
+        with pytest.raises(ac.Error, match=INPUT):
+            model.save(path)
+        with pytest.raises(ac.Error, match=INPUT):
+            ac.validate(lab.without([0.7]).select([0, 0.5, 1]), "paper", json=path)
+    assert snapshot(tmp_path) == before
+
+
 def test_the_same_file_by_a_hard_link(lab, tmp_path):
     os.link("Au-Ag/Rioux-Au60Ag40.yml", "linked.yml")
     before = snapshot(tmp_path)

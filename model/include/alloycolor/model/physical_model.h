@@ -34,6 +34,10 @@
 // themselves, not in ln x: Nordheim's rule makes the alloy scattering rate quadratic,
 // gamma = (1-x) gamma_b + x gamma_a + C x (1-x), and band energies move about linearly
 // with composition (the shipped Au-Ag set is quadratic in the raw parameters too).
+//
+// The terms themselves, templated on the scalar, with their gradients: physical_terms.h.
+// The model evaluates them over a wavelength grid in SIMD lanes (physical_kernel.h): its
+// exact colour per composition is the parameters' polynomials once and the kernel.
 #ifndef ALLOYCOLOR_MODEL_PHYSICAL_MODEL_H_
 #define ALLOYCOLOR_MODEL_PHYSICAL_MODEL_H_
 

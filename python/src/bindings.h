@@ -74,7 +74,10 @@ ProgressCallback PythonProgress(const py::object& callback);
 // work's next check, the work unwinds (its temporaries removed: nothing is written) and
 // the handler's exception is raised here once the work has stopped. An exception of the
 // work itself (an Error, a progress callback's) is rethrown here. Called with the GIL.
-void RunInterruptible(const std::function<void(const CancelCheck& cancel)>& work);
+// Work known to be short (`short_work`: a few colours) runs on the calling thread, without
+// the GIL, its cancel check empty: a thread of its own would cost more than the work.
+void RunInterruptible(const std::function<void(const CancelCheck& cancel)>& work,
+                      bool short_work = false);
 
 // `progress` (which may be empty) after `cancel`: a progress line is a step of the work.
 ProgressCallback WithCancel(ProgressCallback progress, CancelCheck cancel);

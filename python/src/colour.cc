@@ -82,25 +82,27 @@ py::dict ModelColors(const AlloyModel& model, const Array& x_in, const Array& an
   const bool with_sigma = sigma && model.HasUncertainty();
   ColorArrays arrays = MakeColorArrays(static_cast<py::ssize_t>(xs.size()));
   const ColorPointers p = Pointers(arrays);
-  RunInterruptible([&](const CancelCheck& cancel) {
-    const color::Colorimeter& colorimeter = GetColorimeter(illuminant, observer_deg);
-    std::map<double, std::vector<std::size_t>> by_angle;
-    for (std::size_t i = 0; i < xs.size(); ++i) by_angle[angles[i]].push_back(i);
-    for (const auto& [angle, indices] : by_angle) {
-      color::ColorSweep sweep(colorimeter, model, angle);
-      double lo = xs[indices[0]], hi = lo;
-      for (std::size_t i : indices) lo = std::min(lo, xs[i]), hi = std::max(hi, xs[i]);
-      sweep.BuildTableFor(indices.size(), lo, hi, exact);
-      for (std::size_t k = 0; k < indices.size(); ++k) {
-        // A one-sigma takes draws: each is a step; a table's colours, a block of them.
-        if (with_sigma || k % 4096 == 0) cancel();
-        const std::size_t i = indices[k];
-        const color::XYZ xyz = sweep.has_table() ? sweep.XYZAt(xs[i]) : sweep.ExactXYZ(xs[i]);
-        Store(color::ColorFromXYZ(colorimeter, xyz), i, p);
-        p.sigma[i] = with_sigma ? color::DeltaE00Sigma(colorimeter, model, xs[i], angle) : 0.0;
-      }
-    }
-  });
+  RunInterruptible(
+      [&](const CancelCheck& cancel) {
+        const color::Colorimeter& colorimeter = GetColorimeter(illuminant, observer_deg);
+        std::map<double, std::vector<std::size_t>> by_angle;
+        for (std::size_t i = 0; i < xs.size(); ++i) by_angle[angles[i]].push_back(i);
+        for (const auto& [angle, indices] : by_angle) {
+          color::ColorSweep sweep(colorimeter, model, angle);
+          double lo = xs[indices[0]], hi = lo;
+          for (std::size_t i : indices) lo = std::min(lo, xs[i]), hi = std::max(hi, xs[i]);
+          sweep.BuildTableFor(indices.size(), lo, hi, exact);
+          for (std::size_t k = 0; k < indices.size(); ++k) {
+            // A one-sigma takes draws: each is a step; a table's colours, a block of them.
+            if (with_sigma || k % 4096 == 0) cancel();
+            const std::size_t i = indices[k];
+            const color::XYZ xyz = sweep.has_table() ? sweep.XYZAt(xs[i]) : sweep.ExactXYZ(xs[i]);
+            Store(color::ColorFromXYZ(colorimeter, xyz), i, p);
+            p.sigma[i] = with_sigma ? color::DeltaE00Sigma(colorimeter, model, xs[i], angle) : 0.0;
+          }
+        }
+      },
+      !with_sigma && xs.size() <= 64);  // a few colours: well under a millisecond
   return ColorDict(arrays, with_sigma);
 }
 

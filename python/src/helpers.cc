@@ -66,7 +66,12 @@ ProgressCallback PythonProgress(const py::object& callback) {
   };
 }
 
-void RunInterruptible(const std::function<void(const CancelCheck& cancel)>& work) {
+void RunInterruptible(const std::function<void(const CancelCheck& cancel)>& work, bool short_work) {
+  if (short_work) {
+    py::gil_scoped_release release;
+    work([] {});
+    return;
+  }
   struct State {
     std::mutex mutex;
     std::condition_variable done_changed;

@@ -19,6 +19,10 @@
 namespace alloycolor::python {
 namespace {
 
+// The most values (compositions times wavelengths) computed on the calling thread: work
+// of well under a millisecond (bindings.h RunInterruptible).
+constexpr std::size_t kShortWork = 4096;
+
 // result[i, j] at x[i], lambda_nm[j]: the index N = n + ik (eq. 13, 14) or eps itself.
 py::array_t<std::complex<double>> ModelOptics(const AlloyModel& model, const Array& x_in,
                                               const Array& lambda_in, bool index) {
@@ -27,19 +31,21 @@ py::array_t<std::complex<double>> ModelOptics(const AlloyModel& model, const Arr
   py::array_t<std::complex<double>> out(
       {static_cast<py::ssize_t>(xs.size()), static_cast<py::ssize_t>(lambda_nm.size())});
   std::complex<double>* data = out.mutable_data();
-  RunInterruptible([&](const CancelCheck& cancel) {
-    const std::unique_ptr<BoundModel> bound = model.Bind(lambda_nm);
-    std::vector<double> eps1(lambda_nm.size()), eps2(lambda_nm.size());
-    for (std::size_t i = 0; i < xs.size(); ++i) {
-      if (i % 256 == 0) cancel();
-      bound->Permittivity(xs[i], eps1.data(), eps2.data());
-      for (std::size_t j = 0; j < lambda_nm.size(); ++j) {
-        const Complex<double> e{eps1[j], eps2[j]};
-        const Complex<double> v = index ? IndexFromPermittivity(e) : e;
-        data[i * lambda_nm.size() + j] = {v.re, v.im};
-      }
-    }
-  });
+  RunInterruptible(
+      [&](const CancelCheck& cancel) {
+        const std::unique_ptr<BoundModel> bound = model.Bind(lambda_nm);
+        std::vector<double> eps1(lambda_nm.size()), eps2(lambda_nm.size());
+        for (std::size_t i = 0; i < xs.size(); ++i) {
+          if (i % 256 == 0) cancel();
+          bound->Permittivity(xs[i], eps1.data(), eps2.data());
+          for (std::size_t j = 0; j < lambda_nm.size(); ++j) {
+            const Complex<double> e{eps1[j], eps2[j]};
+            const Complex<double> v = index ? IndexFromPermittivity(e) : e;
+            data[i * lambda_nm.size() + j] = {v.re, v.im};
+          }
+        }
+      },
+      xs.size() * lambda_nm.size() <= kShortWork);
   return out;
 }
 

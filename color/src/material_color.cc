@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "alloycolor/color/reflectance_arrays.h"
 #include "alloycolor/core/error.h"
 #include "alloycolor/core/grid.h"
 #include "alloycolor/core/text.h"
@@ -111,27 +112,31 @@ std::vector<double> DeltaE00Sigma(const Colorimeter& colorimeter, const AlloyMod
   const std::vector<std::complex<double>> central_index = model.Index(x_atomic, grid);
   const auto eps_draws = model.CheckedDraws(x_atomic, grid, draws);
   if (eps_draws.empty()) return sigma;
-  std::vector<std::vector<std::complex<double>>> indices;
-  for (const auto& eps : eps_draws) {
-    std::vector<std::complex<double>> index(eps.size());
-    for (size_t i = 0; i < eps.size(); ++i) {
-      const Complex<double> nk =
-          IndexFromPermittivity(Complex<double>{eps[i].real(), eps[i].imag()});
-      index[i] = {nk.re, nk.im};
+  // The draws' colours from their eps on arrays (the sweep's Fresnel step, equal to
+  // MaterialXYZ of their index to rounding): no index, no reflectance spectrum per draw.
+  const size_t m = grid.size();
+  std::vector<double> eps1(m * eps_draws.size()), eps2(m * eps_draws.size());
+  for (size_t d = 0; d < eps_draws.size(); ++d) {
+    for (size_t i = 0; i < m; ++i) {
+      eps1[d * m + i] = eps_draws[d][i].real();
+      eps2[d * m + i] = eps_draws[d][i].imag();
     }
-    indices.push_back(std::move(index));
   }
   for (size_t a = 0; a < angles_deg.size(); ++a) {
     const Lab central =
         LabFromXYZ(MaterialXYZ(colorimeter, central_index, angles_deg[a]), colorimeter.White());
+    const double cos_psi = std::max(std::cos(angles_deg[a] * M_PI / 180.0), 0.0);
     double sum = 0;
-    for (const auto& index : indices) {
-      const Lab lab =
-          LabFromXYZ(MaterialXYZ(colorimeter, index, angles_deg[a]), colorimeter.White());
+    for (size_t d = 0; d < eps_draws.size(); ++d) {
+      double xyz[3];
+      ReflectanceSums(m, &eps1[d * m], &eps2[d * m], cos_psi, angles_deg[a] == 0.0,
+                      colorimeter.wx().data(), colorimeter.wy().data(), colorimeter.wz().data(),
+                      xyz);
+      const Lab lab = LabFromXYZ(XYZ{xyz[0], xyz[1], xyz[2]}, colorimeter.White());
       const double de = DeltaE00(central, lab);
       sum += de * de;
     }
-    sigma[a] = std::sqrt(sum / indices.size());
+    sigma[a] = std::sqrt(sum / eps_draws.size());
     if (!std::isfinite(sigma[a])) {
       throw Error((model.source().empty() ? std::string() : model.source() + ": ") +
                   "the colours of the " + model.method() + " model's uncertainty draws at x = " +

@@ -129,7 +129,8 @@ ALLOYCOLOR_PHYSICS_INLINE double LnRatio(double a, double b) {
   q = q * z + 0.14285714310165906;
   q = q * z + 0.19999999999959436;
   q = q * z + 0.3333333333333333;
-  const double result = k * 0.6931471803691238 + (2.0 * s + 2.0 * s * z * q + k * 1.9082149292705877e-10);
+  const double result =
+      k * 0.6931471803691238 + (2.0 * s + 2.0 * s * z * q + k * 1.9082149292705877e-10);
   const bool normal = (a >= 2.2250738585072014e-308) & (a <= 1.7976931348623157e308) &
                       (b >= 2.2250738585072014e-308) & (b <= 1.7976931348623157e308);
   return normal ? result : kNaN;

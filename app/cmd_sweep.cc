@@ -138,7 +138,80 @@ std::string Describe(double x) {
   return out.str();
 }
 
-void Run(const SweepOptions& o) {
+// The JSON output's head (its results follow) or the CSV's header line; `table`: the
+// interpolated table the rows come from, null where each is evaluated.
+void WriteHead(Output& out, const SweepOptions& o, const AlloyModel& model,
+               const std::string& illuminant, const color::ColorSweep* table) {
+  if (o.format == "json") {
+    nlohmann::json head = {{"system", model.system().Name()},
+                           {"method", model.method()},
+                           {"composition", "atomic_fraction_a"},
+                           {"illuminant", illuminant},
+                           {"observer", o.observer},
+                           {"angle_deg", o.angle_deg},
+                           {"steps", o.steps}};
+    head["evaluation"] = table ? nlohmann::json{{"method", "table"},
+                                                {"nodes", table->table_nodes()},
+                                                {"max_error_xyz", table->table_error()},
+                                                {"tolerance_xyz", color::kSweepTableTolerance}}
+                               : nlohmann::json{{"method", "exact"}};
+    std::string text = JsonText(head);
+    text.pop_back();  // the closing brace; the results follow
+    out.Text(text);
+    out.Text(",\"results\":[\n");
+  } else {
+    out.Text(o.sigma ? "x,X,Y,Z,L,a,b,srgb8_r,srgb8_g,srgb8_b,sigma_de00\n"
+                     : "x,X,Y,Z,L,a,b,srgb8_r,srgb8_g,srgb8_b\n");
+  }
+}
+
+// One row: x, XYZ, L*a*b*, sRGB and, where given, the one-sigma ΔE00.
+void WriteRow(Output& out, bool json, bool first, double x, const color::XYZ& xyz,
+              const color::XYZ& white, const double* sigma) {
+  const color::Lab lab = color::LabFromXYZ(xyz, white);
+  const auto rgb = color::SRGB8FromLinear(color::LinearSRGBFromXYZ(xyz));
+  if (json) {
+    out.Text(first ? "{\"x\":" : ",\n{\"x\":");
+    out.Fixed(x, 9, true);
+    out.Text(",\"XYZ\":[");
+  } else {
+    out.Fixed(x, 9, true);
+    out.Char(',');
+  }
+  out.Fixed(xyz.X, 7);
+  out.Char(',');
+  out.Fixed(xyz.Y, 7);
+  out.Char(',');
+  out.Fixed(xyz.Z, 7);
+  out.Text(json ? "],\"Lab\":[" : ",");
+  out.Fixed(lab.L, 4);
+  out.Char(',');
+  out.Fixed(lab.a, 4);
+  out.Char(',');
+  out.Fixed(lab.b, 4);
+  out.Text(json ? "],\"srgb8\":[" : ",");
+  out.Unsigned(rgb[0]);
+  out.Char(',');
+  out.Unsigned(rgb[1]);
+  out.Char(',');
+  out.Unsigned(rgb[2]);
+  if (sigma) {
+    out.Text(json ? "],\"sigma_de00\":" : ",");
+    out.Fixed(*sigma, 4);
+    out.Text(json ? "}" : "\n");
+  } else {
+    out.Text(json ? "]}" : "\n");
+  }
+}
+
+// The options, and the output's size before the work: refused past the ceiling unless
+// --force, and only where there is room for it.
+struct SweepSize {
+  unsigned long long bytes;
+  std::string text;
+};
+
+SweepSize CheckSweep(const SweepOptions& o) {
   if (o.format != "csv" && o.format != "json") {
     throw Error("--format: '" + o.format + "' is not csv or json");
   }
@@ -147,8 +220,6 @@ void Run(const SweepOptions& o) {
                 std::to_string(kMaxSteps));
   }
   CheckAngleDeg("--angle", o.angle_deg);
-  // The size before the work: refused past the ceiling unless --force, and only where
-  // there is room for it.
   const double row_bytes = o.format == "json" ? kJsonRowBytes : kCsvRowBytes;
   const auto estimate =
       static_cast<unsigned long long>(static_cast<double>(o.steps) * row_bytes) + kHeadBytes;
@@ -161,9 +232,14 @@ void Run(const SweepOptions& o) {
   }
   if (!o.out.empty()) CheckOutputPath(o.out);
   CheckOutputRoom(o.out, estimate);
+  return {estimate, size_text};
+}
+
+void Run(const SweepOptions& o) {
+  const SweepSize size = CheckSweep(o);
   const ProgressCallback progress = ProgressPrinter(o.quiet);
-  if (estimate > kMaxOutputBytes) {
-    Report(progress, "sweep: writing " + size_text + " to " +
+  if (size.bytes > kMaxOutputBytes) {
+    Report(progress, "sweep: writing " + size.text + " to " +
                          (o.out.empty() ? std::string("standard output") : o.out) + " (--force)");
   }
   const color::Colorimeter colorimeter = LoadColorimeter(o.illuminant, o.observer);
@@ -195,27 +271,7 @@ void Run(const SweepOptions& o) {
 
   StreamOutput stream(o.out, &ProgramGuard());
   Output out(&stream);
-  if (json) {
-    nlohmann::json head = {{"system", model->system().Name()},
-                           {"method", model->method()},
-                           {"composition", "atomic_fraction_a"},
-                           {"illuminant", colorimeter.illuminant()},
-                           {"observer", o.observer},
-                           {"angle_deg", o.angle_deg},
-                           {"steps", o.steps}};
-    head["evaluation"] = table ? nlohmann::json{{"method", "table"},
-                                                {"nodes", sweep.table_nodes()},
-                                                {"max_error_xyz", sweep.table_error()},
-                                                {"tolerance_xyz", color::kSweepTableTolerance}}
-                               : nlohmann::json{{"method", "exact"}};
-    std::string text = JsonText(head);
-    text.pop_back();  // the closing brace; the results follow
-    out.Text(text);
-    out.Text(",\"results\":[\n");
-  } else {
-    out.Text(o.sigma ? "x,X,Y,Z,L,a,b,srgb8_r,srgb8_g,srgb8_b,sigma_de00\n"
-                     : "x,X,Y,Z,L,a,b,srgb8_r,srgb8_g,srgb8_b\n");
-  }
+  WriteHead(out, o, *model, colorimeter.illuminant(), table ? &sweep : nullptr);
   const double span = to - from;
   const double last = static_cast<double>(o.steps - 1);
   const long long tenth = o.steps >= kProgressMinSteps ? o.steps / 10 : 0;
@@ -243,40 +299,8 @@ void Run(const SweepOptions& o) {
       throw Error(source + ": composition x = " + Describe(x) + ": the " + model->method() +
                   " model gives no finite colour");
     }
-    const color::Lab lab = color::LabFromXYZ(xyz, white);
-    const auto rgb = color::SRGB8FromLinear(color::LinearSRGBFromXYZ(xyz));
-    if (json) {
-      out.Text(i == 0 ? "{\"x\":" : ",\n{\"x\":");
-      out.Fixed(x, 9, true);
-      out.Text(",\"XYZ\":[");
-    } else {
-      out.Fixed(x, 9, true);
-      out.Char(',');
-    }
-    out.Fixed(xyz.X, 7);
-    out.Char(',');
-    out.Fixed(xyz.Y, 7);
-    out.Char(',');
-    out.Fixed(xyz.Z, 7);
-    out.Text(json ? "],\"Lab\":[" : ",");
-    out.Fixed(lab.L, 4);
-    out.Char(',');
-    out.Fixed(lab.a, 4);
-    out.Char(',');
-    out.Fixed(lab.b, 4);
-    out.Text(json ? "],\"srgb8\":[" : ",");
-    out.Unsigned(rgb[0]);
-    out.Char(',');
-    out.Unsigned(rgb[1]);
-    out.Char(',');
-    out.Unsigned(rgb[2]);
-    if (o.sigma) {
-      out.Text(json ? "],\"sigma_de00\":" : ",");
-      out.Fixed(sigma_block[static_cast<size_t>(i - sigma_first)], 4);
-      out.Text(json ? "}" : "\n");
-    } else {
-      out.Text(json ? "]}" : "\n");
-    }
+    WriteRow(out, json, i == 0, x, xyz, white,
+             o.sigma ? &sigma_block[static_cast<size_t>(i - sigma_first)] : nullptr);
     out.EndRow();
   }
   if (json) out.Text("\n]}\n");

@@ -265,8 +265,9 @@ std::vector<SampleNote> CheckSamples(const Dataset& dataset, const AlloyModel& m
   if (!notes.empty()) {
     rest = Without(dataset, notes);
     if (DistinctCompositions(rest).size() >= 3) {
-      Report(settings.progress, "checking the samples: " + model.method() + " refitted without " +
-                                    std::to_string(notes.size()) + " suspect sample(s)");
+      Report(settings.progress, "checking the samples: the rest judged by " + model.method() +
+                                    " fitted without " + std::to_string(notes.size()) +
+                                    " suspect sample(s) (the model keeps them)");
       FitSettings quiet = settings;
       quiet.progress = {};
       quiet.details = {};

@@ -369,16 +369,20 @@ TEST_F(AuAg, AWarmFoldReachesTheColdFit) {
             std::string::npos);
 }
 
-// Querry's zinc (eps1 > 1 across the visible) drives every degree's fit to eps2 < 0
-// between the samples: refused, naming the data set and where.
-TEST(PhysicalFit, AFitThatIsNotPassiveIsRefusedNamingWhere) {
+// Querry's zinc (eps1 > 1 across the visible) drives every degree's fit out of physics
+// between the samples: refused, naming the data set and where. Which check it fails first
+// (eps2 < 0, or n beyond the limit) rests on rounding, so on the build the machine runs
+// (core/simd.h): one of our machines meets a resonance where another meets eps2 < 0.
+TEST(PhysicalFit, AnUnphysicalFitIsRefusedNamingWhere) {
   try {
     fit::FitPhysical(LoadDataset(DataDir() + "/Cu-Zn"), fit::PhysicalFitOptions{});
     FAIL() << "the fit was accepted";
   } catch (const Error& e) {
     const std::string m = e.what();
     EXPECT_NE(m.find("Cu-Zn/dataset.json"), std::string::npos) << m;
-    EXPECT_NE(m.find("not passive"), std::string::npos) << m;
+    EXPECT_TRUE(m.find("is not passive (eps2 = ") != std::string::npos ||
+                m.find("has a resonance (n = ") != std::string::npos)
+        << m;
     EXPECT_NE(m.find(" at x = "), std::string::npos) << m;
     EXPECT_NE(m.find("lower degrees tried too"), std::string::npos) << m;
   }

@@ -28,7 +28,6 @@ using Json = nlohmann::json;
 
 constexpr const char* kAtomic = "atomic_fraction_a";
 constexpr const char* kWeight = "weight_fraction_a";
-constexpr double kSameComposition = 1e-9;
 // Samples closer than this in atomic fraction, but not equal, are a typing slip: a fit
 // through both would have to bend by 1/kDistinctComposition. Replicates give one x.
 constexpr double kDistinctComposition = 1e-6;
@@ -541,16 +540,30 @@ std::vector<double> DistinctCompositions(const Dataset& dataset) {
   return xs;
 }
 
-Dataset WithoutSamples(const Dataset& dataset, const std::vector<double>& exclude_x) {
-  Dataset result = dataset;
-  result.samples.clear();
+Dataset KeepSamples(const Dataset& dataset, const std::function<bool(const Sample&)>& keep) {
+  // Everything but the samples copied, then the samples kept (not all copied, then cut).
+  Dataset result{dataset.manifest_path,
+                 dataset.name,
+                 dataset.system,
+                 dataset.composition,
+                 {},
+                 dataset.excluded,
+                 dataset.warnings,
+                 dataset.precision_n,
+                 dataset.precision_k,
+                 dataset.precision_stated};
   for (const Sample& sample : dataset.samples) {
-    const bool excluded = std::any_of(exclude_x.begin(), exclude_x.end(), [&sample](double x) {
-      return std::abs(sample.x_atomic - x) <= kSameComposition;
-    });
-    if (!excluded) result.samples.push_back(sample);
+    if (keep(sample)) result.samples.push_back(sample);
   }
   return result;
+}
+
+Dataset WithoutSamples(const Dataset& dataset, const std::vector<double>& exclude_x) {
+  return KeepSamples(dataset, [&exclude_x](const Sample& sample) {
+    return std::none_of(exclude_x.begin(), exclude_x.end(), [&sample](double x) {
+      return std::abs(sample.x_atomic - x) <= kSameComposition;
+    });
+  });
 }
 
 }  // namespace alloycolor

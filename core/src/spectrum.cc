@@ -21,14 +21,18 @@ std::string FormatNm(double value) {
   return buffer;
 }
 
-}  // namespace
-
-bool NkSpectrum::Covers(double lambda_nm_lo, double lambda_nm_hi) const {
-  if (lambda_nm.empty()) return false;
-  return lambda_nm.front() <= lambda_nm_lo && lambda_nm_hi <= lambda_nm.back();
+// n + i k between grid[hi - 1] and grid[hi], the first grid point above lambda_nm (past
+// the last: the last point's).
+std::complex<double> NkBelow(const NkSpectrum& spectrum, std::size_t hi, double lambda_nm) {
+  const std::vector<double>& grid = spectrum.lambda_nm;
+  if (hi == grid.size()) return {spectrum.n.back(), spectrum.k.back()};
+  const std::size_t lo = hi - 1;
+  const double t = (lambda_nm - grid[lo]) / (grid[hi] - grid[lo]);
+  return {spectrum.n[lo] + t * (spectrum.n[hi] - spectrum.n[lo]),
+          spectrum.k[lo] + t * (spectrum.k[hi] - spectrum.k[lo])};
 }
 
-std::complex<double> NkAt(const NkSpectrum& spectrum, double lambda_nm) {
+void CheckCovers(const NkSpectrum& spectrum, double lambda_nm) {
   const std::vector<double>& grid = spectrum.lambda_nm;
   if (grid.empty() || spectrum.n.size() != grid.size() || spectrum.k.size() != grid.size()) {
     throw Error(spectrum.source + ": spectrum is empty or its columns differ in length");
@@ -38,13 +42,35 @@ std::complex<double> NkAt(const NkSpectrum& spectrum, double lambda_nm) {
                 " nm lies outside the data, " + FormatNm(grid.front()) + " to " +
                 FormatNm(grid.back()) + " nm");
   }
-  // First point strictly above lambda_nm; lambda_nm lies in [grid[hi - 1], grid[hi]).
-  const std::size_t hi = std::upper_bound(grid.begin(), grid.end(), lambda_nm) - grid.begin();
-  if (hi == grid.size()) return {spectrum.n.back(), spectrum.k.back()};
-  const std::size_t lo = hi - 1;
-  const double t = (lambda_nm - grid[lo]) / (grid[hi] - grid[lo]);
-  return {spectrum.n[lo] + t * (spectrum.n[hi] - spectrum.n[lo]),
-          spectrum.k[lo] + t * (spectrum.k[hi] - spectrum.k[lo])};
+}
+
+}  // namespace
+
+bool NkSpectrum::Covers(double lambda_nm_lo, double lambda_nm_hi) const {
+  if (lambda_nm.empty()) return false;
+  return lambda_nm.front() <= lambda_nm_lo && lambda_nm_hi <= lambda_nm.back();
+}
+
+std::complex<double> NkAt(const NkSpectrum& spectrum, double lambda_nm) {
+  CheckCovers(spectrum, lambda_nm);
+  const std::vector<double>& grid = spectrum.lambda_nm;
+  return NkBelow(spectrum, std::upper_bound(grid.begin(), grid.end(), lambda_nm) - grid.begin(),
+                 lambda_nm);
+}
+
+std::vector<std::complex<double>> NkOn(const NkSpectrum& spectrum,
+                                       const std::vector<double>& lambda_nm) {
+  const std::vector<double>& grid = spectrum.lambda_nm;
+  std::vector<std::complex<double>> nk(lambda_nm.size());
+  std::size_t hi = 0;
+  for (std::size_t i = 0; i < lambda_nm.size(); ++i) {
+    const double l = lambda_nm[i];
+    CheckCovers(spectrum, l);
+    if (i > 0 && l < lambda_nm[i - 1]) hi = 0;  // not increasing: search from the start
+    while (hi < grid.size() && grid[hi] <= l) ++hi;
+    nk[i] = NkBelow(spectrum, hi, l);
+  }
+  return nk;
 }
 
 NkSpectrum Resample(const NkSpectrum& spectrum, const std::vector<double>& grid_nm) {
@@ -53,8 +79,7 @@ NkSpectrum Resample(const NkSpectrum& spectrum, const std::vector<double>& grid_
   result.lambda_nm = grid_nm;
   result.n.reserve(grid_nm.size());
   result.k.reserve(grid_nm.size());
-  for (double lambda_nm : grid_nm) {
-    const std::complex<double> nk = NkAt(spectrum, lambda_nm);
+  for (const std::complex<double>& nk : NkOn(spectrum, grid_nm)) {
     result.n.push_back(nk.real());
     result.k.push_back(nk.imag());
   }

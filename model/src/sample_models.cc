@@ -18,12 +18,17 @@
 namespace alloycolor {
 namespace {
 
-// Compositions this close are one (SamplesAtComposition's tolerance, core/src/dataset.cc).
-constexpr double kSameCompositionAs = 1e-9;
-
 std::complex<double> EpsOf(const NkSpectrum& nk, double lambda_nm) {
   const std::complex<double> i = NkAt(nk, lambda_nm);
   return i * i;
+}
+
+// EpsOf at each of lambda_nm.
+std::vector<std::complex<double>> EpsOn(const NkSpectrum& nk,
+                                        const std::vector<double>& lambda_nm) {
+  std::vector<std::complex<double>> eps = NkOn(nk, lambda_nm);
+  for (std::complex<double>& e : eps) e = e * e;
+  return eps;
 }
 
 std::complex<double> Lerp(const std::complex<double>& a, const std::complex<double>& b, double t) {
@@ -191,8 +196,7 @@ std::unique_ptr<BoundModel> SampleModel::Bind(const std::vector<double>& lambda_
   std::vector<Complex<double>> node_eps;
   for (const Node& node : nodes_) {
     node_x.push_back(node.x);
-    for (double l : lambda_nm) {
-      const std::complex<double> e = EpsOf(node.nk, l);
+    for (const std::complex<double>& e : EpsOn(node.nk, lambda_nm)) {
       node_eps.push_back({e.real(), e.imag()});
     }
   }
@@ -259,9 +263,9 @@ SampleModel::SampleModel(Kind kind, const Dataset& dataset) : kind_(kind) {
                      [](const Sample* a, const Sample* b) { return a->x_atomic < b->x_atomic; });
     size_t first = 0;
     for (double x : DistinctCompositions(dataset)) {
-      while (first < sorted.size() && sorted[first]->x_atomic < x - kSameCompositionAs) ++first;
+      while (first < sorted.size() && sorted[first]->x_atomic < x - kSameComposition) ++first;
       std::vector<const Sample*> at;
-      for (size_t i = first; i < sorted.size() && sorted[i]->x_atomic <= x + kSameCompositionAs;
+      for (size_t i = first; i < sorted.size() && sorted[i]->x_atomic <= x + kSameComposition;
            ++i) {
         at.push_back(sorted[i]);
       }
@@ -400,20 +404,11 @@ std::string SampleModel::method() const {
 std::vector<std::complex<double>> SampleModel::Permittivity(
     double x_atomic, const std::vector<double>& lambda_nm) const {
   CheckLambda(lambda_nm);
+  if (kind_ == Kind::kEpsLinear) return EpsLinearOn(x_atomic, lambda_nm);
   std::vector<std::complex<double>> eps(lambda_nm.size());
   for (size_t i = 0; i < lambda_nm.size(); ++i) {
-    switch (kind_) {
-      case Kind::kPaper:
-        eps[i] = PaperAt(x_atomic, lambda_nm[i]);
-        break;
-      case Kind::kEpsLinear:
-        eps[i] = EpsLinearAt(x_atomic, lambda_nm[i]);
-        break;
-      case Kind::kEpsPchip:
-      case Kind::kEpsSpline:
-        eps[i] = EpsCubicAt(x_atomic, lambda_nm[i]);
-        break;
-    }
+    eps[i] = kind_ == Kind::kPaper ? PaperAt(x_atomic, lambda_nm[i])
+                                   : EpsCubicAt(x_atomic, lambda_nm[i]);
   }
   return eps;
 }
@@ -423,6 +418,18 @@ std::complex<double> SampleModel::EpsLinearAt(double x, double lambda_nm) const 
   if (b.t == 0.0) return EpsOf(nodes_[b.lo].nk, lambda_nm);
   if (b.t == 1.0) return EpsOf(nodes_[b.hi].nk, lambda_nm);
   return Lerp(EpsOf(nodes_[b.lo].nk, lambda_nm), EpsOf(nodes_[b.hi].nk, lambda_nm), b.t);
+}
+
+std::vector<std::complex<double>> SampleModel::EpsLinearOn(
+    double x, const std::vector<double>& lambda_nm) const {
+  // As EpsLinearAt at each wavelength, with the bracket found once.
+  const Bracket b = FindBracket(node_x_, x);
+  if (b.t == 1.0) return EpsOn(nodes_[b.hi].nk, lambda_nm);
+  std::vector<std::complex<double>> eps = EpsOn(nodes_[b.lo].nk, lambda_nm);
+  if (b.t == 0.0) return eps;
+  const std::vector<std::complex<double>> hi = EpsOn(nodes_[b.hi].nk, lambda_nm);
+  for (size_t i = 0; i < eps.size(); ++i) eps[i] = Lerp(eps[i], hi[i], b.t);
+  return eps;
 }
 
 std::complex<double> SampleModel::EpsCubicAt(double x, double lambda_nm) const {

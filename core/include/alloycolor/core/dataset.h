@@ -20,6 +20,7 @@
 #ifndef ALLOYCOLOR_CORE_DATASET_H_
 #define ALLOYCOLOR_CORE_DATASET_H_
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -62,6 +63,9 @@ struct Dataset {
   bool precision_stated = false;
 };
 
+// Compositions (atomic fractions) this close are one: a sample's replicates.
+inline constexpr double kSameComposition = 1e-9;
+
 // One standard deviation of a measured n and k where the manifest states no precision:
 // what spectroscopic ellipsometry of metal films typically reproduces in the visible
 // (about 0.01 in n and in k between repeated measurements and careful fits), so that no
@@ -88,6 +92,9 @@ const Sample* FindSample(const Dataset& dataset, double x);
 // alone when columns were chosen), its resolved path, or its file name when that names
 // one sample only; null when none (or several) match.
 const Sample* FindSampleByFile(const Dataset& dataset, const std::string& file);
+
+// The data set with the samples `keep` accepts alone, in their order (all else as it is).
+Dataset KeepSamples(const Dataset& dataset, const std::function<bool(const Sample&)>& keep);
 
 // The samples whose x_atomic is not within 1e-9 of any of exclude_x (atomic fractions).
 Dataset WithoutSamples(const Dataset& dataset, const std::vector<double>& exclude_x);

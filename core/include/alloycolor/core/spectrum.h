@@ -24,6 +24,11 @@ struct NkSpectrum {
 // lambda_nm lies outside the spectrum's range.
 std::complex<double> NkAt(const NkSpectrum& spectrum, double lambda_nm);
 
+// n + i k at each of lambda_nm, as NkAt gives it, found in one pass where lambda_nm
+// increases (a search per point where it does not).
+std::vector<std::complex<double>> NkOn(const NkSpectrum& spectrum,
+                                       const std::vector<double>& lambda_nm);
+
 // The spectrum on another grid (each point as NkAt).
 NkSpectrum Resample(const NkSpectrum& spectrum, const std::vector<double>& grid_nm);
 

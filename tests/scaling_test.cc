@@ -4,6 +4,8 @@
 //    against the whole PCHIP curve differentiated by Ceres;
 //  - the interpolating models evaluated from x's neighbourhood against an interpolant
 //    through every sample;
+//  - their folds fitted to the compositions around those they hold out (MethodTraits::
+//    fold_reach) against the same folds fitted to every other sample;
 //  - the physical fit of more than kPhysicalMaxCompositions compositions: fitted to that
 //    many, spread by rank, saying so;
 //  - the smooth fit of more than kSmoothMaxGpCompositions compositions: no Gaussian process,
@@ -12,9 +14,11 @@
 #include <ceres/ceres.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
+#include "../fit/src/folds.h"
 #include "alloycolor/core/dataset.h"
 #include "alloycolor/fit/methods.h"
 #include "alloycolor/fit/physical_fit.h"
@@ -96,6 +100,64 @@ TEST(Scaling, InterpolatingModelsFromTheNeighbourhoodEqualTheWholeInterpolant) {
         const double re = Interpolant(scheme, xs, e1)(x), im = Interpolant(scheme, xs, e2)(x);
         EXPECT_NEAR(eps[j].real(), re, tolerance * std::abs(re)) << x << " " << grid[j];
         EXPECT_NEAR(eps[j].imag(), im, tolerance * std::abs(im)) << x << " " << grid[j];
+      }
+    }
+  }
+}
+
+TEST(Scaling, FoldsOfInterpolatingMethodsFromTheirWindowEqualFoldsOfEveryOtherSample) {
+  // Uneven compositions, a replicate at 0.3, and one sample (x = 0.6) measured over fewer
+  // wavelengths: a fold whose window leaves it out would cover more than the rest do, so it
+  // must be fitted to every other sample instead.
+  std::vector<double> xs;
+  for (int i = 0; i <= 16; ++i) xs.push_back(std::pow(i / 16.0, 1.3));
+  xs.insert(xs.end(), {0.3, 0.6});
+  std::sort(xs.begin(), xs.end());
+  Dataset data = LoadDataset(testing::WriteSyntheticDataset(xs, [](double x, double l) {
+    return std::complex<double>(-12 - 25 * x * x + 0.01 * l * std::sin(8 * x),
+                                1.5 + 2 * x + std::cos(6 * x) * l / 600);
+  }));
+  for (Sample& s : data.samples) {
+    if (s.x_atomic == 0.6) s.nk = Resample(s.nk, UniformGrid(420, 760, 5));
+  }
+  for (size_t i = 0; i < data.samples.size(); ++i) {
+    if (data.samples[i].x_atomic != 0.3) continue;
+    Sample replicate = data.samples[i];
+    replicate.file = "replicate.csv";
+    for (double& n : replicate.nk.n) n *= 1.02;
+    data.samples.insert(data.samples.begin() + static_cast<std::ptrdiff_t>(i) + 1, replicate);
+    break;
+  }
+  const std::vector<double> c = DistinctCompositions(data);  // as read (6 decimals)
+  ASSERT_EQ(c.size(), 19u);
+  const std::vector<std::vector<double>> held = {{c[1]},         {0.3},   {c[8], c[9]}, {0.6},
+                                                 {c[10], c[16]}, {c[17]}, {1.0},        {0.0}};
+  const std::vector<double> grid = {420, 500, 600, 700, 760};
+  for (const char* name : {"eps-linear", "eps-pchip"}) {
+    const MethodInfo& method = *FindMethod(name);
+    ASSERT_GE(method.traits.fold_reach, 0) << name;
+    fit::FitSettings settings;
+    settings.calibrate = false;
+    const std::unique_ptr<AlloyModel> whole = fit::BuildModel(name, data, settings);
+    const std::vector<fit::Fold> folds = fit::FitFolds(method, data, settings, *whole, held);
+    ASSERT_EQ(folds.size(), held.size());
+    for (size_t k = 0; k < held.size(); ++k) {
+      // The fold as it would be without the shortcut: every other sample.
+      const Dataset rest = WithoutSamples(data, held[k]);
+      fit::FitSettings plain = settings;
+      plain.fold = true;
+      const std::unique_ptr<AlloyModel> expected = fit::BuildModel(name, rest, plain);
+      ASSERT_NE(folds[k].model, nullptr) << name << " " << held[k].front() << folds[k].error;
+      EXPECT_EQ(folds[k].compositions, DistinctCompositions(rest));
+      EXPECT_EQ(folds[k].model->lambda_min_nm(), expected->lambda_min_nm());
+      EXPECT_EQ(folds[k].model->lambda_max_nm(), expected->lambda_max_nm());
+      EXPECT_EQ(folds[k].held.size(), data.samples.size() - rest.samples.size());
+      for (double x : held[k]) {
+        const std::vector<std::complex<double>> got = folds[k].model->Permittivity(x, grid);
+        const std::vector<std::complex<double>> want = expected->Permittivity(x, grid);
+        for (size_t j = 0; j < grid.size(); ++j) {
+          EXPECT_EQ(got[j], want[j]) << name << " held " << x << " at " << grid[j];
+        }
       }
     }
   }

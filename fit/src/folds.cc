@@ -5,6 +5,7 @@
 
 #include "alloycolor/color/sample_error.h"
 #include "alloycolor/core/error.h"
+#include "alloycolor/core/grid.h"
 #include "alloycolor/core/parallel.h"
 
 namespace alloycolor::fit {
@@ -21,6 +22,46 @@ std::vector<double> ErrorFolds(const Dataset& dataset) {
   }
   return folds;
 }
+
+namespace {
+
+// The samples a fold that holds out the compositions `held` is fitted to: all the others
+// (`rest`, increasing), or for a method of MethodTraits::fold_reach >= 0 those from
+// `reach` + 1 compositions below each held-out one to as many above it, where they span
+// the wavelengths all the others share (the model's range, CommonRange): its model there
+// is the one all the others give.
+Dataset FoldTraining(const Dataset& dataset, const std::vector<double>& held,
+                     const std::vector<double>& rest, int reach) {
+  if (reach < 0) return WithoutSamples(dataset, held);
+  std::vector<std::pair<double, double>> spans;  // of compositions kept
+  for (double x : held) {
+    const size_t above = std::upper_bound(rest.begin(), rest.end(), x) - rest.begin();
+    if (above == 0 || above == rest.size()) return WithoutSamples(dataset, held);
+    const size_t r = static_cast<size_t>(reach);
+    spans.push_back(
+        {rest[above - 1 - std::min(r, above - 1)], rest[std::min(above + r, rest.size() - 1)]});
+  }
+  const auto is_held = [&held](const Sample& s) {
+    return std::any_of(held.begin(), held.end(),
+                       [&s](double x) { return std::abs(s.x_atomic - x) <= kSameComposition; });
+  };
+  Dataset window = KeepSamples(dataset, [&](const Sample& s) {
+    return !is_held(s) && std::any_of(spans.begin(), spans.end(), [&s](const auto& span) {
+      return s.x_atomic >= span.first && s.x_atomic <= span.second;
+    });
+  });
+  double lo = -1e300, hi = 1e300;
+  for (const Sample& s : dataset.samples) {
+    if (is_held(s)) continue;
+    lo = std::max(lo, s.nk.lambda_min_nm());
+    hi = std::min(hi, s.nk.lambda_max_nm());
+  }
+  const WavelengthRange own = CommonRange(window);
+  if (own.lo_nm != lo || own.hi_nm != hi) return WithoutSamples(dataset, held);
+  return window;
+}
+
+}  // namespace
 
 std::vector<Fold> FitFolds(const MethodInfo& method, const Dataset& dataset,
                            const FitSettings& settings, const AlloyModel& model) {
@@ -40,12 +81,20 @@ std::vector<Fold> FitFolds(const MethodInfo& method, const Dataset& dataset,
   inner.parent = &model;
   inner.start = method.traits.warm_start_folds ? &model : nullptr;
   std::vector<Fold> folds(held.size());
+  const std::vector<double> xs = DistinctCompositions(dataset);
   ParallelTasks(
       held.size(),
       [&](size_t k) {
         Fold& f = folds[k];
         f.x = held[k].front();
-        const Dataset training = WithoutSamples(dataset, held[k]);
+        std::vector<double> rest;
+        for (double x : xs) {  // as WithoutSamples leaves them
+          if (std::none_of(held[k].begin(), held[k].end(),
+                           [x](double h) { return std::abs(x - h) <= kSameComposition; })) {
+            rest.push_back(x);
+          }
+        }
+        const Dataset training = FoldTraining(dataset, held[k], rest, method.traits.fold_reach);
         try {
           f.model = BuildWithFolds(method, training, inner, nullptr);
         } catch (const Error& e) {
@@ -57,7 +106,7 @@ std::vector<Fold> FitFolds(const MethodInfo& method, const Dataset& dataset,
             f.held.push_back(&s);
           }
         }
-        f.compositions = DistinctCompositions(training);
+        f.compositions = std::move(rest);
       },
       settings.threads);
   return folds;
@@ -175,17 +224,15 @@ Scored BuildAndScore(const MethodInfo& method, const Dataset& dataset,
 
 }  // namespace
 
-Scored RememberedBuild(const MethodInfo& method, const Dataset& dataset,
-                       const FitSettings& settings) {
-  if (!settings.memo || settings.start != nullptr || settings.fold) {
-    return BuildAndScore(method, dataset, settings);
-  }
-  const std::string key = FitMemoKey(method, dataset, settings);
+Scored Remembered(const MethodInfo& method, const FitSettings& settings, const std::string& key,
+                  std::map<std::string, FitMemo::Remembered> FitMemo::*table,
+                  const std::function<Scored()>& build,
+                  const std::function<bool(const Scored&)>& keep) {
   FitMemo& memo = *settings.memo;
   {
     const std::lock_guard<std::mutex> lock(memo.mutex);
-    const auto it = memo.builds.find(key);
-    if (it != memo.builds.end()) {
+    const auto it = (memo.*table).find(key);
+    if (it != (memo.*table).end()) {
       const FitMemo::Remembered& m = it->second;
       Scored r;
       if (!m.model.is_null())
@@ -197,16 +244,27 @@ Scored RememberedBuild(const MethodInfo& method, const Dataset& dataset,
       return r;
     }
   }
-  Scored r = BuildAndScore(method, dataset, settings);
-  // A model that keeps its samples (no fitted coefficients: paper, eps-*) is built again
-  // rather than copied: its copy through the model file, every sample's spectrum, costs
-  // what building it does.
-  if (r.model && r.model->FittedCoefficients().empty()) return r;
+  Scored r = build();
+  if (!keep(r)) return r;
   FitMemo::Remembered m{r.model ? r.model->ToJson() : nlohmann::json(), r.score, r.values, r.held_x,
                         r.metric};
   const std::lock_guard<std::mutex> lock(memo.mutex);
-  memo.builds.emplace(key, std::move(m));
+  (memo.*table).emplace(key, std::move(m));
   return r;
+}
+
+Scored RememberedBuild(const MethodInfo& method, const Dataset& dataset,
+                       const FitSettings& settings) {
+  if (!settings.memo || settings.start != nullptr || settings.fold) {
+    return BuildAndScore(method, dataset, settings);
+  }
+  // A model that keeps its samples (no fitted coefficients: paper, eps-*) is built again
+  // rather than copied: its copy through the model file, every sample's spectrum, costs
+  // what building it does.
+  return Remembered(
+      method, settings, FitMemoKey(method, dataset, settings), &FitMemo::builds,
+      [&] { return BuildAndScore(method, dataset, settings); },
+      [](const Scored& r) { return !r.model || !r.model->FittedCoefficients().empty(); });
 }
 
 }  // namespace alloycolor::fit

@@ -120,6 +120,10 @@ std::vector<OptionSpec> PhysicalOptions() {
 std::vector<MethodInfo> BuiltInMethods() {
   MethodTraits smooth = Traits(0, 1);
   smooth.chosen_on_one_fold = true;
+  MethodTraits linear = Traits(2, 2);
+  linear.fold_reach = 0;
+  MethodTraits pchip = Traits(1, 1);
+  pchip.fold_reach = 1;
   MethodTraits physical = Traits(5, 1);
   physical.validate_default = false;  // minutes per split on a large set
   physical.warm_start_folds = true;
@@ -136,14 +140,14 @@ std::vector<MethodInfo> BuiltInMethods() {
        "eps interpolated linearly in composition at every wavelength",
        &ReadSampleModel<SampleModel::Kind::kEpsLinear>,
        nullptr,
-       Traits(2, 2),
+       linear,
        {}},
       {"eps-pchip",
        "eps1 and eps2 interpolated in composition by a monotone cubic (PCHIP) at every "
        "wavelength",
        &ReadSampleModel<SampleModel::Kind::kEpsPchip>,
        nullptr,
-       Traits(1, 1),
+       pchip,
        {}},
       {"eps-spline",
        "eps1 and eps2 interpolated in composition by a natural cubic spline at every "

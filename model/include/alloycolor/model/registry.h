@@ -66,6 +66,12 @@ struct MethodTraits {
   // Its fit has a composition degree that the folds choose (unless the user gives one);
   // a fold must hold degree + 2 compositions to score the model delivered.
   bool chooses_degree = false;
+  // Its prediction between two neighbouring training compositions rests on theirs and this
+  // many more each side alone (eps-linear 0, eps-pchip 1: its slopes at a composition are
+  // its neighbours'); -1: on every composition. A fold is then fitted to those around the
+  // compositions it holds out: the same model there, at a cost that does not grow with the
+  // series (fit/folds.h).
+  int fold_reach = -1;
   // With three compositions, `auto`'s one fold compares only the straight lines between the
   // ends; a method that chooses its own smoothing by other evidence is taken there.
   bool chosen_on_one_fold = false;

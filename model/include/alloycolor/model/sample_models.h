@@ -72,6 +72,8 @@ class SampleModel : public AlloyModel {
   void Diagnose();
   std::complex<double> PaperAt(double x, double lambda_nm) const;
   std::complex<double> EpsLinearAt(double x, double lambda_nm) const;
+  std::vector<std::complex<double>> EpsLinearOn(double x,
+                                                const std::vector<double>& lambda_nm) const;
   std::complex<double> EpsCubicAt(double x, double lambda_nm) const;
 
   Kind kind_;

@@ -4,6 +4,7 @@
 #ifndef ALLOYCOLOR_FIT_SRC_FOLDS_H_
 #define ALLOYCOLOR_FIT_SRC_FOLDS_H_
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -122,6 +123,14 @@ double ChoiceCalibrationFactor(const std::vector<Scored>& candidates,
 // setting a build reads, and the samples (composition, wavelengths, n, k).
 std::string FitMemoKey(const MethodInfo& method, const Dataset& dataset,
                        const FitSettings& settings);
+
+// What `build` gives for `key` in settings.memo's `table`: a copy of the remembered result
+// (its model through the model file) where there is one, else built, and kept there where
+// `keep` accepts it. settings.memo must be set.
+Scored Remembered(const MethodInfo& method, const FitSettings& settings, const std::string& key,
+                  std::map<std::string, FitMemo::Remembered> FitMemo::*table,
+                  const std::function<Scored()>& build,
+                  const std::function<bool(const Scored&)>& keep);
 
 // `method` built on the data set with its folds (with settings.calibrate, its prediction
 // error from them) and the folds' held-out samples scored (ScoreFolds): what `auto` scores a

@@ -296,28 +296,10 @@ Scored RememberedDegreeChoice(const MethodInfo& method, const Dataset& dataset,
   if (!settings.memo || settings.start != nullptr) {
     return BuildChoosingDegree(method, dataset, settings);
   }
-  const std::string key = FitMemoKey(method, dataset, settings);
-  FitMemo& memo = *settings.memo;
-  const auto copy = [&method](const FitMemo::Remembered& m) {
-    Scored r;
-    r.model = method.read(m.model, "the remembered " + method.name + " fit");
-    r.score = m.score;
-    r.values = m.values;
-    r.held_x = m.held_x;
-    r.metric = m.metric;
-    return r;
-  };
-  {
-    const std::lock_guard<std::mutex> lock(memo.mutex);
-    const auto it = memo.degree_choices.find(key);
-    if (it != memo.degree_choices.end()) return copy(it->second);
-  }
-  Scored r = BuildChoosingDegree(method, dataset, settings);
-  if (!r.model) return r;
-  FitMemo::Remembered m{r.model->ToJson(), r.score, r.values, r.held_x, r.metric};
-  const std::lock_guard<std::mutex> lock(memo.mutex);
-  memo.degree_choices.emplace(std::move(key), std::move(m));
-  return r;
+  return Remembered(
+      method, settings, FitMemoKey(method, dataset, settings), &FitMemo::degree_choices,
+      [&] { return BuildChoosingDegree(method, dataset, settings); },
+      [](const Scored& r) { return r.model != nullptr; });
 }
 
 bool ChoosesDegree(const MethodInfo& method, const FitSettings& settings) {

@@ -38,6 +38,7 @@ double DecimalStep(const std::vector<double>& values) {
       ++d;
     }
     decimals = std::max(decimals, d);
+    if (decimals == 12) break;  // no finer step is counted
   }
   return std::pow(10.0, -decimals);
 }
@@ -105,11 +106,19 @@ void AddMisfit(const Dataset& dataset, const AlloyModel& model, const std::vecto
     std::vector<std::complex<double>> mean(grid.size(), 0.0);
     std::vector<std::vector<std::complex<double>>> eps(here.size());
     for (size_t r = 0; r < here.size(); ++r) {
+      // The grid's wavelengths the sample covers, [first, last): its own eps there.
+      const NkSpectrum& nk = here[r]->nk;
+      const size_t first =
+          std::lower_bound(grid.begin(), grid.end(), nk.lambda_min_nm()) - grid.begin();
+      const size_t last = std::max(
+          first,
+          static_cast<size_t>(std::upper_bound(grid.begin(), grid.end(), nk.lambda_max_nm()) -
+                              grid.begin()));
+      const std::vector<std::complex<double>> index =
+          NkOn(nk, std::vector<double>(grid.begin() + first, grid.begin() + last));
       for (size_t j = 0; j < grid.size(); ++j) {
-        const NkSpectrum& nk = here[r]->nk;
-        const bool covered = grid[j] >= nk.lambda_min_nm() && grid[j] <= nk.lambda_max_nm();
-        const std::complex<double> index = covered ? NkAt(nk, grid[j]) : 0.0;
-        eps[r].push_back(covered ? index * index : predicted[j]);
+        const bool covered = j >= first && j < last;
+        eps[r].push_back(covered ? index[j - first] * index[j - first] : predicted[j]);
         mean[j] += eps[r][j] / static_cast<double>(here.size());
       }
     }

@@ -297,10 +297,10 @@ TEST(FileBytes, MessagesAreValidUtf8) {
   }
   EXPECT_EQ(Quote("\xC2\xB5m"), "'\xC2\xB5m'");
   EXPECT_EQ(Quote("\xB5m"), "'?m'");
-  EXPECT_EQ(Quote("a\xC0\xAF"), "'a??'");
-  EXPECT_EQ(Quote("\xED\xA0\x80"), "'???'");       // a UTF-16 surrogate written as UTF-8
-  EXPECT_EQ(Quote("\xF4\x90\x80\x80"), "'????'");  // past U+10FFFF
-  EXPECT_EQ(Quote("\xE2\x82"), "'??'");            // cut short
+  EXPECT_EQ(Quote("a\xC0\xAF"), "'a?\?'");
+  EXPECT_EQ(Quote("\xED\xA0\x80"), "'?\?\?'");        // a UTF-16 surrogate written as UTF-8
+  EXPECT_EQ(Quote("\xF4\x90\x80\x80"), "'?\?\?\?'");  // past U+10FFFF
+  EXPECT_EQ(Quote("\xE2\x82"), "'?\?'");              // cut short
   EXPECT_EQ(MessageLine("a\nb\x1B[31m"), "a?b?[31m");
   const std::string message = ErrorOf([] { Fail(std::string("x \xFF\xFE y")); });
   EXPECT_EQ(message, "x ?? y");

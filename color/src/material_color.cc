@@ -43,9 +43,7 @@ std::vector<std::complex<double>> IndexOnGrid(const Colorimeter& colorimeter,
                                               const NkSpectrum& nk) {
   const std::vector<double> grid =
       EvaluationGrid(colorimeter, nk.lambda_min_nm(), nk.lambda_max_nm(), nk.source);
-  std::vector<std::complex<double>> index(grid.size());
-  for (size_t i = 0; i < grid.size(); ++i) index[i] = NkAt(nk, grid[i]);
-  return index;
+  return NkOn(nk, grid);
 }
 
 std::vector<std::complex<double>> IndexOnGrid(const Colorimeter& colorimeter,

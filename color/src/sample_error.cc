@@ -10,17 +10,6 @@
 #include "alloycolor/core/text.h"
 
 namespace alloycolor::color {
-namespace {
-
-std::vector<std::complex<double>> MeasuredIndex(const NkSpectrum& nk,
-                                                const std::vector<double>& grid) {
-  std::vector<std::complex<double>> index(grid.size());
-  for (size_t i = 0; i < grid.size(); ++i) index[i] = NkAt(nk, grid[i]);
-  return index;
-}
-
-}  // namespace
-
 std::vector<double> MetricGrid(const AlloyModel& model, const NkSpectrum& measured,
                                std::string* description) {
   const double lo = std::max(model.lambda_min_nm(), measured.lambda_min_nm());
@@ -50,7 +39,7 @@ SampleError ErrorAgainstSample(const Colorimeter& colorimeter, const AlloyModel&
   const std::vector<double> grid = MetricGrid(model, sample.nk, &description);
   const std::vector<double> predicted =
       ReflectanceSpectrum(model.Index(sample.x_atomic, grid), 0.0);
-  const std::vector<double> measured = ReflectanceSpectrum(MeasuredIndex(sample.nk, grid), 0.0);
+  const std::vector<double> measured = ReflectanceSpectrum(NkOn(sample.nk, grid), 0.0);
   double sum2 = 0;
   for (size_t i = 0; i < grid.size(); ++i) sum2 += std::pow(predicted[i] - measured[i], 2);
   e.reflectance_rms = std::sqrt(sum2 / grid.size());

@@ -26,17 +26,8 @@
 namespace alloycolor::validate {
 namespace {
 
-constexpr double kSameX = 1e-9;
-
 // ---------------------------------------------------------------------------------------
 // Computation.
-
-std::vector<std::complex<double>> MeasuredIndex(const NkSpectrum& nk,
-                                                const std::vector<double>& grid) {
-  std::vector<std::complex<double>> index(grid.size());
-  for (size_t i = 0; i < grid.size(); ++i) index[i] = NkAt(nk, grid[i]);
-  return index;
-}
 
 struct Colour {
   std::vector<color::Lab> lab;
@@ -198,7 +189,7 @@ MethodResult Evaluate(const AlloyModel& model, const Sample& sample,
   std::string description;
   r.lambda_nm = color::MetricGrid(model, sample.nk, &description);
   const Spectra predicted = SpectraOf(model.Index(sample.x_atomic, r.lambda_nm));
-  const Spectra measured = SpectraOf(MeasuredIndex(sample.nk, r.lambda_nm));
+  const Spectra measured = SpectraOf(NkOn(sample.nk, r.lambda_nm));
   if (holdout->lambda_nm.empty()) {
     holdout->lambda_nm = r.lambda_nm;
     holdout->n = measured.n;
@@ -269,7 +260,7 @@ SampleSplit SplitAtCompositions(const Dataset& dataset, const std::vector<double
   for (size_t i = 0; i < dataset.samples.size(); ++i) {
     const double x = dataset.samples[i].x_atomic;
     if (std::any_of(x_atomic.begin(), x_atomic.end(),
-                    [x](double held) { return std::abs(held - x) <= kSameX; })) {
+                    [x](double held) { return std::abs(held - x) <= kSameComposition; })) {
       split.push_back(i);
     }
   }

@@ -224,10 +224,10 @@ Scored BuildAndScore(const MethodInfo& method, const Dataset& dataset,
 
 }  // namespace
 
-Scored Remembered(const MethodInfo& method, const FitSettings& settings, const std::string& key,
-                  std::map<std::string, FitMemo::Remembered> FitMemo::*table,
-                  const std::function<Scored()>& build,
-                  const std::function<bool(const Scored&)>& keep) {
+Scored ThroughMemo(const MethodInfo& method, const FitSettings& settings, const std::string& key,
+                   std::map<std::string, FitMemo::Remembered> FitMemo::*table,
+                   const std::function<Scored()>& build,
+                   const std::function<bool(const Scored&)>& keep) {
   FitMemo& memo = *settings.memo;
   {
     const std::lock_guard<std::mutex> lock(memo.mutex);
@@ -261,7 +261,7 @@ Scored RememberedBuild(const MethodInfo& method, const Dataset& dataset,
   // A model that keeps its samples (no fitted coefficients: paper, eps-*) is built again
   // rather than copied: its copy through the model file, every sample's spectrum, costs
   // what building it does.
-  return Remembered(
+  return ThroughMemo(
       method, settings, FitMemoKey(method, dataset, settings), &FitMemo::builds,
       [&] { return BuildAndScore(method, dataset, settings); },
       [](const Scored& r) { return !r.model || !r.model->FittedCoefficients().empty(); });

@@ -127,10 +127,10 @@ std::string FitMemoKey(const MethodInfo& method, const Dataset& dataset,
 // What `build` gives for `key` in settings.memo's `table`: a copy of the remembered result
 // (its model through the model file) where there is one, else built, and kept there where
 // `keep` accepts it. settings.memo must be set.
-Scored Remembered(const MethodInfo& method, const FitSettings& settings, const std::string& key,
-                  std::map<std::string, FitMemo::Remembered> FitMemo::*table,
-                  const std::function<Scored()>& build,
-                  const std::function<bool(const Scored&)>& keep);
+Scored ThroughMemo(const MethodInfo& method, const FitSettings& settings, const std::string& key,
+                   std::map<std::string, FitMemo::Remembered> FitMemo::*table,
+                   const std::function<Scored()>& build,
+                   const std::function<bool(const Scored&)>& keep);
 
 // `method` built on the data set with its folds (with settings.calibrate, its prediction
 // error from them) and the folds' held-out samples scored (ScoreFolds): what `auto` scores a

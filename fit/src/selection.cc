@@ -296,7 +296,7 @@ Scored RememberedDegreeChoice(const MethodInfo& method, const Dataset& dataset,
   if (!settings.memo || settings.start != nullptr) {
     return BuildChoosingDegree(method, dataset, settings);
   }
-  return Remembered(
+  return ThroughMemo(
       method, settings, FitMemoKey(method, dataset, settings), &FitMemo::degree_choices,
       [&] { return BuildChoosingDegree(method, dataset, settings); },
       [](const Scored& r) { return r.model != nullptr; });

@@ -144,6 +144,20 @@ TEST(WithoutSamplesTest, DropsTheNamedCompositions) {
   }
   EXPECT_EQ(fewer.name, dataset.name);
   EXPECT_EQ(WithoutSamples(dataset, {}).samples.size(), 11u);
+  // KeepSamples keeps the header and the samples it is told to, in their order.
+  const Dataset odd = KeepSamples(dataset, [](const Sample& s) { return s.x_atomic > 0.75; });
+  ASSERT_EQ(odd.samples.size(), 3u);  // 0.8, 0.9, 1
+  EXPECT_EQ(odd.samples.front().file, "Rioux-Au80Ag20.yml");
+  EXPECT_EQ(odd.manifest_path, dataset.manifest_path);
+  EXPECT_EQ(odd.composition, dataset.composition);
+  EXPECT_EQ(odd.excluded.size(), dataset.excluded.size());
+}
+
+TEST(AmongCompositionsTest, WithinOneBillionthIsTheSameComposition) {
+  EXPECT_TRUE(AmongCompositions(0.5 + 0.9e-9, {0.2, 0.5}));
+  EXPECT_TRUE(AmongCompositions(0.5 - 0.9e-9, {0.2, 0.5}));
+  EXPECT_FALSE(AmongCompositions(0.5 + 1.1e-9, {0.2, 0.5}));
+  EXPECT_FALSE(AmongCompositions(0.5, {}));
 }
 
 // A folder with two small spectra and a manifest written by each test.

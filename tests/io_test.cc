@@ -467,6 +467,27 @@ TEST(SpectrumTest, NkAtInterpolatesLinearly) {
   EXPECT_THAT(ErrorOf([&] { NkAt(NkSpectrum{"empty", {}, {}, {}}, 500); }), HasSubstr("empty"));
 }
 
+TEST(SpectrumTest, NkOnIsTheHandInterpolationInAnyOrder) {
+  NkSpectrum nk;
+  nk.source = "hand.csv";
+  nk.lambda_nm = {500, 600, 700};
+  nk.n = {1, 2, 4};
+  nk.k = {3, 5, 5};
+  // By hand as above: 500 -> 1+3i, 525 -> 1.25+3.5i, 600 -> 2+5i, 650 -> 3+5i, 700 -> 4+5i;
+  // increasing, repeated and falling wavelengths alike.
+  const std::vector<double> at = {500, 525, 525, 600, 650, 700, 525, 500};
+  const std::vector<std::complex<double>> want = {{1, 3}, {1.25, 3.5}, {1.25, 3.5}, {2, 5},
+                                                  {3, 5}, {4, 5},      {1.25, 3.5}, {1, 3}};
+  const std::vector<std::complex<double>> got = NkOn(nk, at);
+  ASSERT_EQ(got.size(), want.size());
+  for (size_t i = 0; i < want.size(); ++i) {
+    EXPECT_DOUBLE_EQ(got[i].real(), want[i].real()) << at[i];
+    EXPECT_DOUBLE_EQ(got[i].imag(), want[i].imag()) << at[i];
+  }
+  EXPECT_TRUE(NkOn(nk, {}).empty());
+  EXPECT_THAT(ErrorOf([&] { NkOn(nk, {550, 700.1}); }), HasSubstr("hand.csv: wavelength 700.1"));
+}
+
 TEST(SpectrumTest, ResampleAndUniformGrid) {
   const std::vector<double> grid = UniformGrid(380, 780, 5);
   ASSERT_EQ(grid.size(), 81u);

@@ -558,11 +558,14 @@ Dataset KeepSamples(const Dataset& dataset, const std::function<bool(const Sampl
   return result;
 }
 
+bool AmongCompositions(double x, const std::vector<double>& xs) {
+  return std::any_of(xs.begin(), xs.end(),
+                     [x](double y) { return std::abs(x - y) <= kSameComposition; });
+}
+
 Dataset WithoutSamples(const Dataset& dataset, const std::vector<double>& exclude_x) {
   return KeepSamples(dataset, [&exclude_x](const Sample& sample) {
-    return std::none_of(exclude_x.begin(), exclude_x.end(), [&sample](double x) {
-      return std::abs(sample.x_atomic - x) <= kSameComposition;
-    });
+    return !AmongCompositions(sample.x_atomic, exclude_x);
   });
 }
 

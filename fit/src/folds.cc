@@ -41,10 +41,7 @@ Dataset FoldTraining(const Dataset& dataset, const std::vector<double>& held,
     spans.push_back(
         {rest[above - 1 - std::min(r, above - 1)], rest[std::min(above + r, rest.size() - 1)]});
   }
-  const auto is_held = [&held](const Sample& s) {
-    return std::any_of(held.begin(), held.end(),
-                       [&s](double x) { return std::abs(s.x_atomic - x) <= kSameComposition; });
-  };
+  const auto is_held = [&held](const Sample& s) { return AmongCompositions(s.x_atomic, held); };
   Dataset window = KeepSamples(dataset, [&](const Sample& s) {
     return !is_held(s) && std::any_of(spans.begin(), spans.end(), [&s](const auto& span) {
       return s.x_atomic >= span.first && s.x_atomic <= span.second;
@@ -89,10 +86,7 @@ std::vector<Fold> FitFolds(const MethodInfo& method, const Dataset& dataset,
         f.x = held[k].front();
         std::vector<double> rest;
         for (double x : xs) {  // as WithoutSamples leaves them
-          if (std::none_of(held[k].begin(), held[k].end(),
-                           [x](double h) { return std::abs(x - h) <= kSameComposition; })) {
-            rest.push_back(x);
-          }
+          if (!AmongCompositions(x, held[k])) rest.push_back(x);
         }
         const Dataset training = FoldTraining(dataset, held[k], rest, method.traits.fold_reach);
         try {

@@ -258,11 +258,7 @@ std::vector<SampleSplit> LeaveOneOutSplits(const Dataset& dataset) {
 SampleSplit SplitAtCompositions(const Dataset& dataset, const std::vector<double>& x_atomic) {
   SampleSplit split;
   for (size_t i = 0; i < dataset.samples.size(); ++i) {
-    const double x = dataset.samples[i].x_atomic;
-    if (std::any_of(x_atomic.begin(), x_atomic.end(),
-                    [x](double held) { return std::abs(held - x) <= kSameComposition; })) {
-      split.push_back(i);
-    }
+    if (AmongCompositions(dataset.samples[i].x_atomic, x_atomic)) split.push_back(i);
   }
   return split;
 }

@@ -66,6 +66,9 @@ struct Dataset {
 // Compositions (atomic fractions) this close are one: a sample's replicates.
 inline constexpr double kSameComposition = 1e-9;
 
+// Whether x is one of xs (within kSameComposition).
+bool AmongCompositions(double x, const std::vector<double>& xs);
+
 // One standard deviation of a measured n and k where the manifest states no precision:
 // what spectroscopic ellipsometry of metal films typically reproduces in the visible
 // (about 0.01 in n and in k between repeated measurements and careful fits), so that no
